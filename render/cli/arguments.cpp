@@ -1,0 +1,82 @@
+#include "cli/arguments.hpp"
+
+#include <omp.h>
+
+#include "core/error.hpp"
+
+namespace bsmpm::cli {
+
+Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::string>& flags,
+                     const std::set<std::string>& options, const std::set<std::string>& repeated) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string a = args[i];
+    if (a.rfind("--", 0) != 0 || a == "--") {
+      positional_.push_back(a);
+      continue;
+    }
+    std::string value;
+    bool has_inline = false;
+    if (const auto eq = a.find('='); eq != std::string::npos && !repeated.count(a.substr(0, eq))) {
+      value = a.substr(eq + 1);
+      a = a.substr(0, eq);
+      has_inline = true;
+    }
+    if (flags.count(a)) {
+      if (has_inline) throw UsageError(a + " takes no value");
+      flags_.insert(a);
+    } else if (options.count(a) || repeated.count(a)) {
+      if (!has_inline) {
+        if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+        value = args[++i];
+      }
+      if (repeated.count(a)) repeated_[a].push_back(value);
+      else options_[a] = value;
+    } else {
+      throw UsageError("unknown option " + a + " (see --help)");
+    }
+  }
+}
+
+std::string Arguments::option(const std::string& name, const std::string& fallback) const {
+  const auto it = options_.find(name);
+  return it == options_.end() ? fallback : it->second;
+}
+
+double Arguments::number(const std::string& name, double fallback) const {
+  if (!has(name)) return fallback;
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(option(name), &used);
+    if (used != option(name).size()) throw std::invalid_argument("trailing");
+    return v;
+  } catch (const std::exception&) {
+    throw UsageError(name + " expects a number, got '" + option(name) + "'");
+  }
+}
+
+long Arguments::integer(const std::string& name, long fallback) const {
+  if (!has(name)) return fallback;
+  try {
+    std::size_t used = 0;
+    const long v = std::stol(option(name), &used);
+    if (used != option(name).size()) throw std::invalid_argument("trailing");
+    return v;
+  } catch (const std::exception&) {
+    throw UsageError(name + " expects an integer, got '" + option(name) + "'");
+  }
+}
+
+const std::vector<std::string>& Arguments::all(const std::string& name) const {
+  static const std::vector<std::string> none;
+  const auto it = repeated_.find(name);
+  return it == repeated_.end() ? none : it->second;
+}
+
+int apply_thread_option(const Arguments& args) {
+  const long n = args.integer("--threads", 0);
+  if (n < 0 || n > 1024) throw UsageError("--threads expects 0 (all cores) to 1024");
+  if (n > 0) omp_set_num_threads(static_cast<int>(n));
+  return n > 0 ? static_cast<int>(n) : omp_get_max_threads();
+}
+
+}  // namespace bsmpm::cli

@@ -1,0 +1,70 @@
+// bsmpm bench SCENE: times the step of a scene (no output files) and reports time per step
+// and particle-steps per second with the thread and core counts.
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "cli/arguments.hpp"
+#include "cli/commands.hpp"
+#include "core/error.hpp"
+#include "scene/scene_builder.hpp"
+#include "scene/scene_loader.hpp"
+#include "step/time_step.hpp"
+
+namespace bsmpm::cli {
+
+namespace {
+const char* kHelp =
+    "usage: bsmpm bench SCENE.toml [--steps N] [--warmup N] [--threads N] [--set KEY=VALUE ...] [--json]\n"
+    "\n"
+    "Builds the scene, runs --warmup steps (default 20), then times --steps steps (default 200)\n"
+    "with the scene's time step. Prints time per step and particle-steps per second, with the\n"
+    "thread count and the machine's core count. --json prints one JSON object instead.\n";
+}
+
+int command_bench(const std::vector<std::string>& argv) {
+  Arguments args(argv, {"--help", "--json"}, {"--steps", "--warmup", "--threads"}, {"--set"});
+  if (args.flag("--help")) {
+    std::fputs(kHelp, stdout);
+    return kOk;
+  }
+  if (args.positional().size() != 1) throw UsageError("bench expects one scene file (see bsmpm bench --help)");
+  const long steps = args.integer("--steps", 200), warmup = args.integer("--warmup", 20);
+  if (steps < 1 || warmup < 0) throw UsageError("--steps must be >= 1 and --warmup >= 0");
+  const int threads = apply_thread_option(args);
+  const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"));
+  auto sim = build_simulation(scene);
+  const GridInfo g = sim->grid_info();
+  const double h_min = std::min(g.cell_size.x(), g.cell_size.y());
+  auto step = [&] { sim->advance(time_step(scene.time, sim->max_signal_speed(), h_min)); };
+  for (long i = 0; i < warmup; ++i) step();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (long i = 0; i < steps; ++i) step();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::size_t n = sim->particles().size();
+  const double per_step = wall / steps;
+  const double rate = n * steps / wall;
+  const unsigned cores = std::thread::hardware_concurrency();
+  if (args.flag("--json")) {
+    std::printf("{\"scene\": \"%s\", \"particles\": %zu, \"order\": %d, \"cells\": [%d, %d], \"cell_size\": [%g, %g], "
+                "\"threads\": %d, \"cores\": %u, \"steps\": %ld, \"seconds\": %.6g, \"seconds_per_step\": %.6g, "
+                "\"particle_steps_per_second\": %.6g}\n",
+                scene.path.c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(), threads, cores,
+                steps, wall, per_step, rate);
+  } else {
+    std::printf("scene                %s\n", scene.path.c_str());
+    std::printf("grid                 %d x %d cells of %.4g mm, order %d\n", g.cells_x, g.cells_y, g.cell_size.x() * 1e3,
+                g.order);
+    std::printf("particles            %zu\n", n);
+    std::printf("threads / cores      %d / %u\n", threads, cores);
+    std::printf("steps timed          %ld (after %ld warm-up)\n", steps, warmup);
+    std::printf("time per step        %.3f ms\n", per_step * 1e3);
+    std::printf("particle-steps/s     %.3g\n", rate);
+  }
+  return kOk;
+}
+
+}  // namespace bsmpm::cli

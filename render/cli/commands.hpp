@@ -1,0 +1,16 @@
+// The sub-commands of the bsmpm program. Each returns the process exit code.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace bsmpm::cli {
+
+// Exit codes shared by all commands.
+enum ExitCode { kOk = 0, kFailure = 1, kBadInput = 2, kUnstable = 3, kInterrupted = 130 };
+
+int command_run(const std::vector<std::string>& args);
+int command_check(const std::vector<std::string>& args);
+int command_bench(const std::vector<std::string>& args);
+
+}  // namespace bsmpm::cli

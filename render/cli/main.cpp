@@ -1,0 +1,59 @@
+// bsmpm: B-spline material point simulator for dam-break flows against obstacles.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "core/error.hpp"
+#include "core/version.hpp"
+
+namespace {
+
+const char* kHelp =
+    "usage: bsmpm COMMAND [options]\n"
+    "\n"
+    "B-spline material point method (BSMPM) for dam-break flows striking rigid and elastic\n"
+    "obstacles (Hua et al. 2025, Chinese J. Comput. Mech. 42(5):772).\n"
+    "\n"
+    "commands\n"
+    "  run SCENE --out DIR     simulate a scene; frames to DIR/run.h5 (+ .xdmf), probes to CSV\n"
+    "  check SCENE             validate a scene and print what a run would do\n"
+    "  bench SCENE             time the step: ms per step, particle-steps per second\n"
+    "\n"
+    "  bsmpm COMMAND --help    the options of a command\n"
+    "  bsmpm --version         program version\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace bsmpm;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::fputs(kHelp, args.empty() ? stderr : stdout);
+    return args.empty() ? cli::kBadInput : cli::kOk;
+  }
+  if (args[0] == "--version") {
+    std::printf("bsmpm %s (%s)\n", kVersion, kGitRevision);
+    return cli::kOk;
+  }
+  const std::string command = args[0];
+  args.erase(args.begin());
+  try {
+    if (command == "run") return cli::command_run(args);
+    if (command == "check") return cli::command_check(args);
+    if (command == "bench") return cli::command_bench(args);
+    throw UsageError("unknown command '" + command + "' (see bsmpm --help)");
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
+    return cli::kBadInput;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
+    return cli::kBadInput;
+  } catch (const NumericalError& e) {
+    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
+    return cli::kUnstable;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
+    return cli::kFailure;
+  }
+}

@@ -1,0 +1,101 @@
+#!/usr/bin/python3
+"""Plots the pressure probes of a run (P* against T*), optionally against experiment.
+
+usage: plot_probes.py RUN_DIR [--experiment lobovsky_h300] [--output FILE.png]
+                      [--probes NAME ...] [--window DT*]
+
+The experimental curves come from tests/data/ (Lobovsky et al. 2014, one run at 20 kHz),
+with the 2.5-97.5 % band of the peak over 100 repeats (their Table 2) drawn as a bar.
+--window applies a centred moving average of that width in T* to the simulation only
+(0 = raw samples, the default).
+"""
+import argparse
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXPERIMENTS = {
+    "lobovsky_h300": {
+        "P_z30": ("tests/data/lobovsky2014_h300/sensor3_z30mm_run.dat", 30.0),
+        "P_z80": ("tests/data/lobovsky2014_h300/sensor4_z80mm_run.dat", 80.0),
+    }
+}
+
+
+def read_probe(path):
+    with open(path) as f:
+        lines = [l for l in f if not l.startswith("#")]
+    reader = csv.reader(lines)
+    header = next(reader)
+    data = np.array([[float(v) for v in row] for row in reader])
+    return header, data
+
+
+def peak_band(z_mm):
+    path = os.path.join(ROOT, "tests/data/lobovsky2014_h300/peak_statistics.txt")
+    for row in np.loadtxt(path, comments="#"):
+        if abs(row[0] - z_mm) < 1e-6:
+            return row[4], row[5], row[6]  # median, 2.5 %, 97.5 % of P*
+    return None
+
+
+def moving_average(t, y, width):
+    if width <= 0:
+        return y
+    c = np.concatenate([[0.0], np.cumsum(y)])
+    lo = np.searchsorted(t, t - width / 2)
+    hi = np.searchsorted(t, t + width / 2, side="right")
+    return (c[hi] - c[lo]) / np.maximum(hi - lo, 1)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dir")
+    ap.add_argument("--experiment", choices=sorted(EXPERIMENTS))
+    ap.add_argument("--output", default=None)
+    ap.add_argument("--probes", nargs="*")
+    ap.add_argument("--window", type=float, default=0.0)
+    args = ap.parse_args()
+
+    names = args.probes or sorted(
+        f[:-4] for f in os.listdir(args.run_dir) if f.endswith(".csv") and f.startswith("P")
+    )
+    if not names:
+        sys.exit(f"plot_probes: no pressure probe CSVs in {args.run_dir}")
+    fig, axes = plt.subplots(len(names), 1, figsize=(8, 2.8 * len(names)), squeeze=False)
+    for ax, name in zip(axes[:, 0], names):
+        header, d = read_probe(os.path.join(args.run_dir, name + ".csv"))
+        if "P*" not in header:
+            continue
+        T, P = d[:, header.index("T*")], d[:, header.index("P*")]
+        exp = EXPERIMENTS.get(args.experiment, {}).get(name)
+        if exp:
+            e = np.loadtxt(os.path.join(ROOT, exp[0]))
+            ax.plot(e[:, 0], e[:, 1], color="0.6", lw=0.6, label="experiment (Lobovsky et al. 2014)")
+            band = peak_band(exp[1])
+            if band:
+                ax.errorbar([e[np.argmax(e[:, 1]), 0]], [band[0]], yerr=[[band[0] - band[1]], [band[2] - band[0]]],
+                            fmt="s", color="k", ms=4, capsize=3, label="peak median, 2.5-97.5 %")
+        label = "bsmpm" + (f" (moving average {args.window:g} T*)" if args.window > 0 else "")
+        ax.plot(T, moving_average(T, P, args.window), color="tab:blue", lw=0.9, label=label)
+        ax.set_ylabel("P*")
+        ax.set_title(name, fontsize=10)
+        ax.set_xlim(0, max(T.max(), 6.0))
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="upper right")
+    axes[-1, 0].set_xlabel("T* = t sqrt(g/H)")
+    fig.tight_layout()
+    out = args.output or os.path.join(args.run_dir, "pressure_probes.png")
+    fig.savefig(out, dpi=110)
+    print(f"plot_probes: wrote {out}")
+
+
+if __name__ == "__main__":
+    main()

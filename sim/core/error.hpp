@@ -1,0 +1,64 @@
+// Typed errors thrown by the library; the command-line program prints them and exits
+// non-zero. Library code never calls exit().
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace bsmpm {
+
+// Where a value came from: a scene file position, or a command-line override.
+struct SourceLocation {
+  std::string file;  // scene path, or "--set key" for an override
+  int line = 0;
+  int column = 0;
+
+  std::string str() const {
+    if (line <= 0) return file;
+    return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+  }
+};
+
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A scene (or override) that cannot be simulated as written.
+// what() reads "file:line:column: key: message".
+class SceneError : public Error {
+ public:
+  SceneError(SourceLocation where, std::string key, std::string message)
+      : Error(where.str() + ": " + (key.empty() ? "" : key + ": ") + message),
+        where_(std::move(where)),
+        key_(std::move(key)),
+        message_(std::move(message)) {}
+  const SourceLocation& where() const { return where_; }
+  const std::string& key() const { return key_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  SourceLocation where_;
+  std::string key_;
+  std::string message_;
+};
+
+// Reading or writing a run file failed.
+class IoError : public Error {
+ public:
+  using Error::Error;
+};
+
+// The simulation became numerically invalid (non-finite state, particle lost).
+class NumericalError : public Error {
+ public:
+  using Error::Error;
+};
+
+// Wrong command-line usage.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace bsmpm

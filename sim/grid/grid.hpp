@@ -1,0 +1,66 @@
+// The tensor-product control-point grid: one clamped B-spline basis per axis, control
+// points indexed (i, j) -> i * ny + j, placed at their Greville abscissae.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "bspline/clamped_bspline.hpp"
+#include "core/types.hpp"
+
+namespace bsmpm {
+
+// Rectangle of control-point indices [i0, i1) x [j0, j1); empty when i0 >= i1.
+struct NodeBox {
+  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  bool empty() const { return i0 >= i1 || j0 >= j1; }
+  void include(const NodeBox& o) {
+    if (o.empty()) return;
+    if (empty()) { *this = o; return; }
+    i0 = std::min(i0, o.i0); i1 = std::max(i1, o.i1);
+    j0 = std::min(j0, o.j0); j1 = std::max(j1, o.j1);
+  }
+};
+
+template <int P>
+struct Grid {
+  using Basis = ClampedBSpline<P>;
+  Basis bx, by;
+
+  Grid() = default;
+  Grid(Vec2 origin, Vec2 cell_size, int cells_x, int cells_y)
+      : bx(origin.x(), cell_size.x(), cells_x), by(origin.y(), cell_size.y(), cells_y) {}
+
+  int nx() const { return bx.basis_count(); }
+  int ny() const { return by.basis_count(); }
+  int node_count() const { return nx() * ny(); }
+  int index(int i, int j) const { return i * ny() + j; }
+  Vec2 greville(int i, int j) const { return {bx.greville(i), by.greville(j)}; }
+  Vec2 origin() const { return {bx.origin(), by.origin()}; }
+  Vec2 extent_max() const { return {bx.end(), by.end()}; }
+  Vec2 cell_size() const { return {bx.cell_size(), by.cell_size()}; }
+  NodeBox all_nodes() const { return {0, nx(), 0, ny()}; }
+};
+
+// One velocity field on the grid: a body, or a group of bodies sharing a field.
+// All arrays are zero between steps outside the nodes the step touched.
+struct GridLayer {
+  std::vector<double> mass;
+  std::vector<Vec2> momentum;        // eq. 6 numerator; becomes the velocity v_I^k
+  std::vector<Vec2> force;           // eqs. 7-8
+  std::vector<Vec2> velocity;        // v_I^{k+1} after all constraints (eq. 10)
+  std::vector<Vec2> velocity_change; // v_I^{k+1} - v_I^k, the FLIP increment of eq. 11
+  std::vector<Vec2> remap_velocity;  // eq. 13: remapped momentum, then velocity
+  NodeBox active;                    // nodes written this step
+
+  void resize(int n) {
+    mass.assign(n, 0.0);
+    momentum.assign(n, Vec2::Zero());
+    force.assign(n, Vec2::Zero());
+    velocity.assign(n, Vec2::Zero());
+    velocity_change.assign(n, Vec2::Zero());
+    remap_velocity.assign(n, Vec2::Zero());
+  }
+};
+
+}  // namespace bsmpm

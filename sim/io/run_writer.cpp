@@ -1,0 +1,240 @@
+#include "io/run_writer.hpp"
+
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "core/version.hpp"
+
+namespace bsmpm {
+
+namespace {
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  char s[32];
+  std::strftime(s, sizeof s, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return s;
+}
+
+void write_body_attributes(hid_t g, const Body& b) {
+  h5::set_attribute(g, "name", b.name);
+  h5::set_attribute(g, "type", std::string(kind_of(b.material)));
+  h5::set_attribute(g, "first", static_cast<long>(b.begin));
+  h5::set_attribute(g, "count", static_cast<long>(b.size()));
+  h5::set_attribute(g, "spacing", std::vector<double>{b.spacing.x(), b.spacing.y()});
+  h5::set_attribute(g, "density", density_of(b.material));
+  if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&b.material)) {
+    h5::set_attribute(g, "bulk_modulus", f->bulk_modulus);
+    h5::set_attribute(g, "viscosity", f->viscosity);
+    h5::set_attribute(g, "equation_of_state", std::string(f->eos == EquationOfState::kTait ? "tait" : "linear"));
+  } else if (const auto* e = std::get_if<ElasticSolid>(&b.material)) {
+    h5::set_attribute(g, "youngs_modulus", e->youngs_modulus);
+    h5::set_attribute(g, "poisson_ratio", e->poisson_ratio);
+  }
+}
+
+}  // namespace
+
+RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, const Simulation& sim)
+    : directory_(directory), h5_path_(directory + "/run.h5"), xdmf_path_(directory + "/run.xdmf") {
+  file_ = h5::create_file(h5_path_);
+  h5::set_attribute(file_, "format", std::string("bsmpm-run"));
+  h5::set_attribute(file_, "format_version", 1L);
+  h5::set_attribute(file_, "program_version", std::string(kVersion));
+  h5::set_attribute(file_, "git_revision", std::string(kGitRevision));
+  h5::set_attribute(file_, "title", prov.title);
+  h5::set_attribute(file_, "status", std::string("running"));
+  h5::set_attribute(file_, "end_time", prov.end_time);
+  {
+    h5::Handle g = h5::create_group(file_, "provenance");
+    h5::set_attribute(g, "scene_path", prov.scene_path);
+    h5::set_attribute(g, "scene_text", prov.scene_text);
+    h5::set_attribute(g, "effective_scene", prov.effective_scene);
+    h5::set_attribute(g, "command_line", prov.command_line);
+    h5::set_attribute(g, "threads", static_cast<long>(prov.threads));
+    h5::set_attribute(g, "started_utc", utc_now());
+  }
+  {
+    h5::Handle g = h5::create_group(file_, "reference");
+    h5::set_attribute(g, "length", prov.reference.length);
+    h5::set_attribute(g, "density", prov.reference.density);
+    h5::set_attribute(g, "gravity", prov.reference.gravity);
+  }
+  {
+    const GridInfo gi = sim.grid_info();
+    h5::Handle g = h5::create_group(file_, "grid");
+    h5::set_attribute(g, "order", static_cast<long>(gi.order));
+    h5::set_attribute(g, "origin", std::vector<double>{gi.origin.x(), gi.origin.y()});
+    h5::set_attribute(g, "cell_size", std::vector<double>{gi.cell_size.x(), gi.cell_size.y()});
+    h5::set_attribute(g, "cells", std::vector<double>{double(gi.cells_x), double(gi.cells_y)});
+    const Vec2 hi = gi.extent_max();
+    h5::set_attribute(g, "extent_max", std::vector<double>{hi.x(), hi.y()});
+  }
+  {
+    h5::Handle g = h5::create_group(file_, "bodies");
+    const auto& bodies = sim.bodies();
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      h5::Handle bg = h5::create_group(g, std::to_string(b));
+      write_body_attributes(bg, bodies[b]);
+    }
+  }
+  {
+    // Per-particle constants, in id order (the order of every frame).
+    const Particles& ps = sim.particles();
+    particle_count_ = ps.size();
+    std::vector<std::uint16_t> body(ps.size());
+    std::vector<double> mass(ps.size()), x0(2 * ps.size());
+    for (std::size_t k = 0; k < ps.size(); ++k) {
+      const std::size_t p = sim.index_of_id()[k];
+      body[k] = ps.body[p];
+      mass[k] = ps.mass[p];
+      x0[2 * k] = ps.x0[p].x();
+      x0[2 * k + 1] = ps.x0[p].y();
+    }
+    h5::Handle g = h5::create_group(file_, "particles");
+    h5::write_dataset(g, "body", body.data(), body.size());
+    h5::write_dataset(g, "mass", mass.data(), mass.size(), 1);
+    h5::write_dataset(g, "reference_position", x0.data(), ps.size(), 2);
+  }
+  frames_ = h5::create_group(file_, "frames");
+  {
+    h5::Handle g = h5::create_group(file_, "probes");
+    for (const auto& probe : sim.probes()) {
+      const auto cols = probe->columns();
+      probe_sets_.emplace_back(g, probe->name(), cols.size());
+      h5::Handle set(H5Dopen2(g, probe->name().c_str(), H5P_DEFAULT), "probe dataset");
+      std::string joined;
+      for (std::size_t c = 0; c < cols.size(); ++c) joined += (c ? "," : "") + cols[c];
+      h5::set_attribute(set, "columns", joined);
+      h5::set_attribute(set, "description", probe->describe());
+      const std::string csv = directory_ + "/" + probe->name() + ".csv";
+      std::FILE* f = std::fopen(csv.c_str(), "w");
+      if (!f) throw IoError(csv + ": cannot create");
+      probe_csv_.push_back(f);
+      std::fprintf(f, "# %s\n", probe->describe().c_str());
+      for (std::size_t c = 0; c < cols.size(); ++c) std::fprintf(f, "%s%s", c ? "," : "", cols[c].c_str());
+      std::fprintf(f, "\n");
+      probe_rows_done_.push_back(0);
+    }
+  }
+  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+}
+
+RunWriter::~RunWriter() {
+  for (std::FILE* f : probe_csv_) std::fclose(f);
+}
+
+void RunWriter::flush_probes(const Simulation& sim) {
+  auto& probes = sim.probes();
+  for (std::size_t k = 0; k < probes.size(); ++k) {
+    const Probe& probe = *probes[k];
+    const std::size_t done = probe_rows_done_[k], total = probe.row_count();
+    if (total == done) continue;
+    probe_sets_[k].append(probe.row(done), total - done);
+    const std::size_t cols = probe.columns().size();
+    for (std::size_t r = done; r < total; ++r) {
+      const double* row = probe.row(r);
+      for (std::size_t c = 0; c < cols; ++c) std::fprintf(probe_csv_[k], "%s%.9g", c ? "," : "", row[c]);
+      std::fprintf(probe_csv_[k], "\n");
+    }
+    std::fflush(probe_csv_[k]);
+    probe_rows_done_[k] = total;
+  }
+}
+
+void RunWriter::write_frame(const Simulation& sim, double dt) {
+  if (sim.step_count() == last_frame_step_) return;  // this state is written already
+  last_frame_step_ = sim.step_count();
+  const Particles& ps = sim.particles();
+  const auto& index = sim.index_of_id();
+  const std::size_t n = ps.size();
+  char name[32];
+  std::snprintf(name, sizeof name, "%06d", frames_written());
+  h5::Handle g = h5::create_group(frames_, name);
+  h5::set_attribute(g, "time", sim.time());
+  h5::set_attribute(g, "step", sim.step_count());
+  h5::set_attribute(g, "dt", dt);
+
+  std::vector<double> two(2 * n), one(n), three(3 * n);
+  auto write_vec = [&](const char* set, auto get) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec2 v = get(index[k]);
+      two[2 * k] = v.x();
+      two[2 * k + 1] = v.y();
+    }
+    h5::write_dataset(g, set, two.data(), n, 2);
+  };
+  write_vec("position", [&](std::size_t p) { return ps.x[p]; });
+  write_vec("velocity", [&](std::size_t p) { return ps.v[p]; });
+  write_vec("displacement", [&](std::size_t p) { return Vec2(ps.x[p] - ps.x0[p]); });
+  for (std::size_t k = 0; k < n; ++k) one[k] = ps.pressure[index[k]];
+  h5::write_dataset(g, "pressure", one.data(), n, 1);
+  for (std::size_t k = 0; k < n; ++k) one[k] = ps.volume(index[k]);
+  h5::write_dataset(g, "volume", one.data(), n, 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Mat2& s = ps.stress[index[k]];
+    three[3 * k] = s(0, 0);
+    three[3 * k + 1] = s(1, 1);
+    three[3 * k + 2] = s(0, 1);
+  }
+  h5::write_dataset(g, "stress", three.data(), n, 3);
+
+  frame_times_.push_back(sim.time());
+  frame_names_.push_back(name);
+  flush_probes(sim);
+  h5::set_attribute(file_, "frames_written", static_cast<long>(frames_written()));
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw IoError(h5_path_ + ": flush failed");
+  write_xdmf();
+}
+
+void RunWriter::finish(const std::string& status, const Simulation& sim, double dt) {
+  if (status == "completed") write_frame(sim, dt);
+  flush_probes(sim);
+  h5::set_attribute(file_, "status", status);
+  h5::set_attribute(file_, "steps", sim.step_count());
+  h5::set_attribute(file_, "clamped_positions", sim.stats().clamped_positions);
+  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+}
+
+// XDMF 2 sidecar: a temporal collection of point clouds referencing run.h5. Rewritten
+// whole after each frame through a temporary file, so it always parses.
+void RunWriter::write_xdmf() const {
+  const std::string tmp = xdmf_path_ + ".tmp";
+  {
+    std::ofstream x(tmp);
+    const std::size_t n = particle_count_;
+    x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
+      << "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (std::size_t f = 0; f < frame_names_.size(); ++f) {
+      const std::string path = "run.h5:/frames/" + frame_names_[f] + "/";
+      x << "   <Grid Name=\"frame " << frame_names_[f] << "\" GridType=\"Uniform\">\n"
+        << "    <Time Value=\"" << frame_times_[f] << "\"/>\n"
+        << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
+        << "    <Geometry GeometryType=\"XY\">\n"
+        << "     <DataItem Dimensions=\"" << n << " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+        << path << "position</DataItem>\n    </Geometry>\n";
+      auto attribute = [&](const char* name, const char* type, int comps, const std::string& where) {
+        x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << type << "\" Center=\"Node\">\n"
+          << "     <DataItem Dimensions=\"" << n;
+        if (comps > 1) x << " " << comps;
+        x << "\" NumberType=\"" << (std::string(name) == "body" ? "UInt\" Precision=\"2" : "Float\" Precision=\"8")
+          << "\" Format=\"HDF\">" << where << "</DataItem>\n    </Attribute>\n";
+      };
+      attribute("pressure", "Scalar", 1, path + "pressure");
+      attribute("velocity", "Vector", 2, path + "velocity");
+      attribute("displacement", "Vector", 2, path + "displacement");
+      attribute("stress", "Vector", 3, path + "stress");
+      attribute("volume", "Scalar", 1, path + "volume");
+      attribute("body", "Scalar", 1, "run.h5:/particles/body");
+      x << "   </Grid>\n";
+    }
+    x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+    if (!x) throw IoError(tmp + ": cannot write");
+  }
+  std::filesystem::rename(tmp, xdmf_path_);
+}
+
+}  // namespace bsmpm

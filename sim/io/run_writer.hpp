@@ -1,0 +1,59 @@
+// Writes a run: one HDF5 file (frames, probe series, provenance; layout in
+// docs/output-format.md), an XDMF sidecar so ParaView opens the frames, and one CSV per
+// probe. Everything is flushed after each frame, so a crash or Ctrl-C keeps what was written.
+#pragma once
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/hdf5.hpp"
+#include "probes/probe.hpp"
+#include "step/simulation.hpp"
+
+namespace bsmpm {
+
+struct RunProvenance {
+  std::string title;
+  std::string scene_path;
+  std::string scene_text;       // the file as read
+  std::string effective_scene;  // after --set overrides
+  std::string command_line;
+  int threads = 1;
+  double end_time = 0.0;
+  ReferenceScales reference;
+};
+
+class RunWriter {
+ public:
+  // Creates DIR/run.h5, DIR/run.xdmf and DIR/<probe>.csv; DIR must exist.
+  RunWriter(const std::string& directory, const RunProvenance& provenance, const Simulation& sim);
+  ~RunWriter();
+  RunWriter(const RunWriter&) = delete;
+  RunWriter& operator=(const RunWriter&) = delete;
+
+  // Appends the current state as a frame, plus the probe rows sampled since the last call.
+  void write_frame(const Simulation& sim, double dt);
+  // Marks the run "completed", "interrupted" or "failed: ..." and flushes.
+  void finish(const std::string& status, const Simulation& sim, double dt);
+
+  int frames_written() const { return static_cast<int>(frame_times_.size()); }
+  const std::string& h5_path() const { return h5_path_; }
+
+ private:
+  void flush_probes(const Simulation& sim);
+  void write_xdmf() const;
+
+  std::string directory_, h5_path_, xdmf_path_;
+  h5::Handle file_, frames_;
+  std::vector<h5::RowAppender> probe_sets_;
+  std::vector<std::FILE*> probe_csv_;
+  std::vector<std::size_t> probe_rows_done_;
+  std::vector<double> frame_times_;
+  std::vector<std::string> frame_names_;
+  std::size_t particle_count_ = 0;
+  long last_frame_step_ = -1;
+};
+
+}  // namespace bsmpm

@@ -1,0 +1,46 @@
+// Elastic solid with large rotations, plane strain (METHOD.md §2; Walhorn 2005 benchmark).
+// Two hyperelastic models, both exactly objective and equal to linear elasticity for small
+// strains:
+//  - Neo-Hookean:               sigma = mu/J (F F^T - I) + lambda ln(J)/J I
+//  - Saint Venant-Kirchhoff:    S = lambda tr(E) I + 2 mu E,  sigma = F S F^T / J
+#pragma once
+
+#include <cmath>
+
+#include "core/types.hpp"
+
+namespace bsmpm {
+
+enum class ElasticModel { kNeoHookean, kSaintVenantKirchhoff };
+
+struct ElasticSolid {
+  double density = 1000.0;  // rho0 [kg/m3]
+  double youngs_modulus = 1.0e6;
+  double poisson_ratio = 0.0;
+  ElasticModel model = ElasticModel::kNeoHookean;
+
+  double lame_lambda() const {
+    const double E = youngs_modulus, nu = poisson_ratio;
+    return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  }
+  double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
+
+  // P-wave speed sqrt((lambda + 2 mu) / rho) in the current configuration.
+  double wave_speed(double J) const {
+    return std::sqrt((lame_lambda() + 2.0 * shear_modulus()) * J / density);
+  }
+
+  Mat2 stress(const Mat2& F) const {
+    const double J = F.determinant();
+    const double lambda = lame_lambda(), mu = shear_modulus();
+    const Mat2 I = Mat2::Identity();
+    if (model == ElasticModel::kNeoHookean) {
+      return (mu / J) * (F * F.transpose() - I) + (lambda * std::log(J) / J) * I;
+    }
+    const Mat2 E = 0.5 * (F.transpose() * F - I);
+    const Mat2 S = lambda * E.trace() * I + 2.0 * mu * E;
+    return F * S * F.transpose() / J;
+  }
+};
+
+}  // namespace bsmpm

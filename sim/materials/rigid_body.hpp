@@ -1,0 +1,14 @@
+// Rigid obstacle of prescribed motion: its particles move with a given velocity and act
+// on other bodies only through contact (the limit m -> infinity of METHOD.md §3).
+#pragma once
+
+#include "core/types.hpp"
+
+namespace bsmpm {
+
+struct RigidBody {
+  double density = 1000.0;  // only weights the mass-gradient normals
+  Vec2 velocity = Vec2::Zero();
+};
+
+}  // namespace bsmpm

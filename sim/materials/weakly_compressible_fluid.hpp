@@ -1,0 +1,59 @@
+// Weakly compressible Newtonian fluid (METHOD.md §2): sigma = -p I + 2 mu dev(D),
+// with a linear or Tait equation of state. K = rho0 c0^2 is the bulk stiffness.
+#pragma once
+
+#include <cmath>
+
+#include "core/types.hpp"
+
+namespace bsmpm {
+
+enum class EquationOfState { kLinear, kTait };
+
+struct WeaklyCompressibleFluid {
+  double density = 1000.0;        // rho0 [kg/m3]
+  double bulk_modulus = 1.0e6;    // K [Pa]
+  double viscosity = 0.0;         // mu [Pa s]
+  EquationOfState eos = EquationOfState::kTait;
+  double tait_gamma = 7.0;
+  double min_pressure = -1.0e300; // tension cut-off [Pa]; -inf keeps tension
+
+  // p(J) with rho / rho0 = 1 / J.
+  double pressure(double J) const {
+    const double ratio = 1.0 / J;
+    double p;
+    if (eos == EquationOfState::kLinear) {
+      p = bulk_modulus * (ratio - 1.0);
+    } else {
+      p = bulk_modulus / tait_gamma * (std::pow(ratio, tait_gamma) - 1.0);
+    }
+    return p < min_pressure ? min_pressure : p;
+  }
+
+  // Inverse of pressure(): the J at which the fluid carries pressure p.
+  double volume_ratio(double p) const {
+    if (eos == EquationOfState::kLinear) return 1.0 / (1.0 + p / bulk_modulus);
+    return 1.0 / std::pow(1.0 + tait_gamma * p / bulk_modulus, 1.0 / tait_gamma);
+  }
+
+  // c = sqrt(dp/drho).
+  double sound_speed(double J) const {
+    double c2 = bulk_modulus / density;
+    if (eos == EquationOfState::kTait) c2 *= std::pow(1.0 / J, tait_gamma - 1.0);
+    return std::sqrt(c2);
+  }
+
+  // Cauchy stress from the rate of deformation D = sym(L); the deviator is the
+  // plane-strain one (D_zz = 0), dev(D) = D - tr(D)/3 I.
+  template <bool kViscous>
+  Mat2 stress(double p, const Mat2& L) const {
+    Mat2 sigma = -p * Mat2::Identity();
+    if constexpr (kViscous) {
+      const Mat2 D = 0.5 * (L + L.transpose());
+      sigma += 2.0 * viscosity * (D - (D.trace() / 3.0) * Mat2::Identity());
+    }
+    return sigma;
+  }
+};
+
+}  // namespace bsmpm

@@ -1,0 +1,33 @@
+// Surge front of a fluid body: its furthest extent along a direction, taken as the
+// foremost particle centre plus half a particle spacing (Martin & Moyce 1952 measure the
+// front from the wall behind the column). Columns t, T*, front [m].
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "probes/probe.hpp"
+
+namespace bsmpm {
+
+class FrontProbe final : public Probe {
+ public:
+  FrontProbe(std::string name, double interval, int body, std::string body_name, Vec2 direction,
+             ReferenceScales scales)
+      : Probe(std::move(name), interval), body_(body), body_name_(std::move(body_name)),
+        direction_(direction.normalized()), scales_(scales) {}
+
+  std::vector<std::string> columns() const override { return {"t", "T*", "front"}; }
+  std::string describe() const override;
+
+ protected:
+  void sample(const ProbeContext& ctx, double* row) override;
+
+ private:
+  int body_;
+  std::string body_name_;
+  Vec2 direction_;
+  ReferenceScales scales_;
+};
+
+}  // namespace bsmpm

@@ -1,0 +1,57 @@
+// Probes sample the state after a step and keep a time series (one row per sample).
+// A scene without probes has none: sampling costs nothing then.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "particles/body.hpp"
+#include "particles/particles.hpp"
+
+namespace bsmpm {
+
+struct ProbeContext {
+  const Particles& particles;
+  const std::vector<Body>& bodies;
+  const std::vector<std::uint32_t>& index_of_id;
+  double time;
+};
+
+// Scales for the non-dimensional columns: T* = t sqrt(g/H), P* = P / (rho g H).
+struct ReferenceScales {
+  double length = 1.0;    // H [m]
+  double density = 1000.0;
+  double gravity = 9.81;
+  double time_factor() const;      // sqrt(g / H)
+  double pressure_scale() const;   // rho g H
+};
+
+class Probe {
+ public:
+  Probe(std::string name, double interval) : name_(std::move(name)), interval_(interval) {}
+  virtual ~Probe() = default;
+
+  const std::string& name() const { return name_; }
+  virtual std::vector<std::string> columns() const = 0;
+  virtual std::string describe() const = 0;
+
+  // Samples when the interval since the last sample has elapsed (every call if 0).
+  void maybe_sample(const ProbeContext& ctx);
+
+  std::size_t row_count() const { return columns_count() ? data_.size() / columns_count() : 0; }
+  const double* row(std::size_t r) const { return data_.data() + r * columns_count(); }
+  const std::vector<double>& data() const { return data_; }
+
+ protected:
+  virtual void sample(const ProbeContext& ctx, double* row) = 0;
+
+ private:
+  std::size_t columns_count() const { return columns().size(); }
+  std::string name_;
+  double interval_;
+  double next_time_ = -1.0e300;
+  std::vector<double> data_;
+};
+
+}  // namespace bsmpm

@@ -1,0 +1,132 @@
+#include "scene/scene_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "particles/seeding.hpp"
+#include "probes/front_probe.hpp"
+#include "probes/material_point.hpp"
+#include "probes/pressure_probe.hpp"
+#include "step/bsmpm_simulation.hpp"
+#include "step/effects/gravity.hpp"
+#include "step/effects/local_damping.hpp"
+#include "step/effects/tank_walls.hpp"
+
+namespace bsmpm {
+
+namespace {
+
+// Hydrostatic pressure of a fluid body at rest under gravity: p = rho0 |g| depth, the
+// depth measured from the body's highest point along -g. The volume ratio follows from the
+// equation of state, and the mass is that of the compressed column (m = rho0 V / J).
+void seed_body(const SceneDescription& scene, const BodyDescription& desc, BodyId id, Particles& ps,
+               Body& body) {
+  const Vec2 h = scene.actual_cell_size();
+  const SeededPoints pts = seed_particles(desc.shape, scene.domain_min, h / scene.particles_per_cell);
+  body.spacing = pts.spacing;
+  body.begin = ps.size();
+  const double rho = density_of(desc.material);
+  const Vec2 g = gravity_vector(scene.gravity, scene.slope_deg);
+  const auto* fluid = std::get_if<WeaklyCompressibleFluid>(&desc.material);
+  const bool hydrostatic = fluid && desc.initial_stress == InitialStress::kHydrostatic && scene.gravity > 0.0;
+  const Vec2 up = hydrostatic ? Vec2(-g / g.norm()) : Vec2(0.0, 1.0);
+  double top = -std::numeric_limits<double>::infinity();
+  for (const Vec2& x : pts.positions) top = std::max(top, up.dot(x));
+  top += 0.5 * (std::abs(up.x()) * pts.spacing.x() + std::abs(up.y()) * pts.spacing.y());
+
+  for (std::size_t k = 0; k < pts.positions.size(); ++k) {
+    const Vec2& x = pts.positions[k];
+    double J = 1.0, pressure = 0.0;
+    if (hydrostatic) {
+      pressure = fluid->density * scene.gravity * (top - up.dot(x));
+      J = fluid->volume_ratio(pressure);
+    }
+    const double V0 = pts.volumes[k] / J;
+    ps.push_back(x, rho * V0, V0, id);
+    const std::size_t p = ps.size() - 1;
+    ps.v[p] = desc.velocity;
+    ps.J[p] = J;
+    ps.pressure[p] = pressure;
+    ps.stress[p] = -pressure * Mat2::Identity();
+  }
+  body.end = ps.size();
+}
+
+std::unique_ptr<Probe> make_probe(const SceneDescription& scene, const ProbeDescription& d, const Particles& ps,
+                                  const std::vector<Body>& bodies) {
+  std::vector<int> fluids;
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (is_fluid(bodies[b].material)) fluids.push_back(static_cast<int>(b));
+  const Vec2 h = scene.actual_cell_size();
+  const PressureSensor sensor{d.size, d.depth.value_or(std::min(h.x(), h.y()))};
+  switch (d.kind) {
+    case ProbeDescription::Kind::kWallPressure: {
+      Vec2 centre, normal;
+      switch (d.wall) {
+        case kLeft: centre = {scene.domain_min.x(), d.position}; normal = {1, 0}; break;
+        case kRight: centre = {scene.domain_max.x(), d.position}; normal = {-1, 0}; break;
+        case kBottom: centre = {d.position, scene.domain_min.y()}; normal = {0, 1}; break;
+        default: centre = {d.position, scene.domain_max.y()}; normal = {0, -1}; break;
+      }
+      return std::make_unique<PressureProbe>(d.name, d.interval, centre, normal, sensor, fluids, scene.reference,
+                                             std::string(wall_side_name(d.wall)) + " wall");
+    }
+    case ProbeDescription::Kind::kSurfacePressure: {
+      MaterialPoint anchor(ps, bodies[d.body], d.point);
+      return std::make_unique<PressureProbe>(d.name, d.interval, anchor, d.normal, sensor, fluids, scene.reference,
+                                             "face of " + bodies[d.body].name);
+    }
+    case ProbeDescription::Kind::kFront:
+      return std::make_unique<FrontProbe>(d.name, d.interval, d.body, bodies[d.body].name, d.normal, scene.reference);
+    case ProbeDescription::Kind::kMaterialPoint:
+      return std::make_unique<MaterialPointProbe>(d.name, d.interval, MaterialPoint(ps, bodies[d.body], d.point),
+                                                  bodies[d.body].name);
+  }
+  return nullptr;
+}
+
+template <int P>
+std::unique_ptr<Simulation> build(const SceneDescription& scene) {
+  if (!scene.contacts.empty())
+    throw SceneError(scene.contacts.front().where, "contacts", "multi-body contact is not available in this build");
+  StepState<P> st;
+  st.grid = Grid<P>(scene.domain_min, scene.actual_cell_size(), scene.cells_x(), scene.cells_y());
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const BodyDescription& desc = scene.bodies[b];
+    Body body;
+    body.name = desc.name;
+    body.material = desc.material;
+    seed_body(scene, desc, static_cast<BodyId>(b), st.particles, body);
+    if (body.size() == 0)
+      throw SceneError(desc.where, "bodies[" + std::to_string(b) + "].shape",
+                       "the shape holds no particle at this grid resolution");
+    if (is_rigid(body.material))
+      throw SceneError(desc.where, "bodies[" + std::to_string(b) + "].material",
+                       "rigid bodies take part through [[contacts]], which this build does not support yet");
+    body.layer = 0;
+    st.bodies.push_back(std::move(body));
+  }
+  st.layers.resize(1);
+
+  std::vector<std::unique_ptr<Effect<P>>> effects;
+  if (scene.gravity > 0.0) effects.push_back(std::make_unique<Gravity<P>>(scene.gravity, scene.slope_deg));
+  if (scene.solver.local_damping > 0.0) effects.push_back(std::make_unique<LocalDamping<P>>(scene.solver.local_damping));
+  effects.push_back(std::make_unique<TankWalls<P>>(scene.walls));
+
+  std::vector<std::unique_ptr<Probe>> probes;
+  for (const auto& d : scene.probes) probes.push_back(make_probe(scene, d, st.particles, st.bodies));
+
+  return std::make_unique<BsmpmSimulation<P>>(std::move(st), scene.solver, std::move(effects), std::move(probes));
+}
+
+}  // namespace
+
+std::unique_ptr<Simulation> build_simulation(const SceneDescription& scene) {
+  switch (scene.order) {
+    case 1: return build<1>(scene);
+    case 2: return build<2>(scene);
+    default: return build<3>(scene);
+  }
+}
+
+}  // namespace bsmpm

@@ -1,0 +1,79 @@
+// Validated access to a TOML table (after pbrt-v4's ParameterDictionary + ReportUnused):
+// every accessor checks type and range and names file:line:column and the dotted key on
+// failure; finish() reports every key that no accessor asked for.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "core/error.hpp"
+#include "core/types.hpp"
+
+namespace bsmpm {
+
+SourceLocation location_of(const toml::node& node);
+SourceLocation location_of(const toml::key& key);
+
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_open = false;  // min excluded
+  bool max_open = false;
+  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
+  static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
+  static Range closed(double a, double b) { return {a, b, false, false}; }
+};
+
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string prefix, SourceLocation where);
+
+  bool has(std::string_view key) const;
+  // Location of the key's value (or of the table if absent).
+  SourceLocation where(std::string_view key) const;
+  const SourceLocation& where() const { return where_; }
+  std::string dotted(std::string_view key) const { return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key); }
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+
+  double number(std::string_view key, Range range = {});
+  double number_or(std::string_view key, double fallback, Range range = {});
+  long integer(std::string_view key, long min, long max);
+  long integer_or(std::string_view key, long fallback, long min, long max);
+  bool boolean_or(std::string_view key, bool fallback);
+  std::string string(std::string_view key);
+  std::string string_or(std::string_view key, std::string fallback);
+  std::string choice(std::string_view key, const std::vector<std::string>& options);
+  std::string choice_or(std::string_view key, std::string fallback, const std::vector<std::string>& options);
+  Vec2 vec2(std::string_view key, Range range = {});
+  Vec2 vec2_or(std::string_view key, Vec2 fallback, Range range = {});
+  std::array<std::string, 2> string_pair(std::string_view key);
+  std::vector<Vec2> points(std::string_view key, std::size_t min_count);
+
+  TableReader table(std::string_view key);
+  std::optional<TableReader> optional_table(std::string_view key);
+  std::vector<TableReader> tables(std::string_view key);  // array of tables, may be absent
+  // Keys of a table whose entries are all tables (e.g. [materials.water], [materials.steel]).
+  std::vector<std::pair<std::string, TableReader>> named_tables();
+
+  // Throws on the first key no accessor used.
+  void finish() const;
+
+ private:
+  const toml::node& required(std::string_view key);
+  double checked(std::string_view key, const toml::node& node, Range range) const;
+
+  const toml::table& table_;
+  std::string prefix_;
+  SourceLocation where_;
+  std::set<std::string, std::less<>> used_;
+  mutable std::set<std::string, std::less<>> known_;  // every key asked for, for suggestions
+};
+
+}  // namespace bsmpm

@@ -1,0 +1,449 @@
+#include "step/bsmpm_simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+#include "core/error.hpp"
+
+namespace bsmpm {
+
+namespace {
+
+// Fastest signal c + |v| a particle of this material can carry (CFL condition).
+struct SignalSpeed {
+  double J;
+  double speed;
+  double operator()(const WeaklyCompressibleFluid& f) const { return f.sound_speed(J) + speed; }
+  double operator()(const ElasticSolid& s) const { return s.wave_speed(J) + speed; }
+  double operator()(const RigidBody& r) const { return r.velocity.norm(); }
+};
+
+std::string describe_material(const Body& b) {
+  char s[320];
+  if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&b.material)) {
+    std::snprintf(s, sizeof s,
+                  "fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s",
+                  b.name.c_str(), f->eos == EquationOfState::kTait ? "Tait" : "linear",
+                  f->bulk_modulus, f->sound_speed(1.0), f->density,
+                  f->viscosity > 0.0 ? ("viscosity " + std::to_string(f->viscosity) + " Pa s").c_str()
+                                     : "inviscid");
+  } else if (const auto* e = std::get_if<ElasticSolid>(&b.material)) {
+    std::snprintf(s, sizeof s, "elastic stress [%s]: %s, E = %g Pa, nu = %g, rho0 = %g kg/m3",
+                  b.name.c_str(),
+                  e->model == ElasticModel::kNeoHookean ? "Neo-Hookean" : "Saint Venant-Kirchhoff",
+                  e->youngs_modulus, e->poisson_ratio, e->density);
+  } else {
+    const auto& r = std::get<RigidBody>(b.material);
+    std::snprintf(s, sizeof s, "rigid motion [%s]: prescribed velocity (%g, %g) m/s", b.name.c_str(),
+                  r.velocity.x(), r.velocity.y());
+  }
+  return s;
+}
+
+}  // namespace
+
+template <int P>
+BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
+                                    std::vector<std::unique_ptr<Effect<P>>> effects,
+                                    std::vector<std::unique_ptr<Probe>> probes)
+    : st_(std::move(state)), settings_(settings), effects_(std::move(effects)), probes_(std::move(probes)) {
+  for (auto& e : effects_) {
+    if (e->hooks() & kHookGridForces) force_hooks_.push_back(e.get());
+    if (e->hooks() & kHookConstrainVelocity) velocity_hooks_.push_back(e.get());
+  }
+  schedules_.resize(st_.bodies.size());
+  if (settings_.smooth_fluid_volume) {
+    smoothing_mass_.assign(st_.grid.node_count(), 0.0);
+    smoothing_value_.assign(st_.grid.node_count(), 0.0);
+    gradient_scratch_.resize(st_.particles.size());
+  }
+  st_.weights.resize(st_.particles.size());
+  for (auto& layer : st_.layers) layer.resize(st_.grid.node_count());
+  st_.index_of_id.resize(st_.particles.size());
+  for (std::size_t p = 0; p < st_.particles.size(); ++p) st_.index_of_id[st_.particles.id[p]] = p;
+  double lightest = std::numeric_limits<double>::infinity();
+  for (double m : st_.particles.mass) lightest = std::min(lightest, m);
+  st_.mass_cutoff = settings_.mass_cutoff_ratio * lightest;
+  for (const Body& b : st_.bodies)
+    for (std::size_t p = b.begin; p < b.end; ++p)
+      max_signal_speed_ = std::max(
+          max_signal_speed_, std::visit(SignalSpeed{st_.particles.J[p], st_.particles.v[p].norm()}, b.material));
+  sort_particles_by_cell();
+}
+
+template <int P>
+GridInfo BsmpmSimulation<P>::grid_info() const {
+  return {P, st_.grid.origin(), st_.grid.cell_size(), st_.grid.bx.cells(), st_.grid.by.cells()};
+}
+
+template <int P>
+std::vector<std::string> BsmpmSimulation<P>::describe_effects() const {
+  std::vector<std::string> lines;
+  for (const Body& b : st_.bodies) lines.push_back(describe_material(b));
+  for (const auto& e : effects_) lines.push_back(e->describe());
+  for (const auto& p : probes_) lines.push_back("probe " + p->describe());
+  return lines;
+}
+
+template <int P>
+void BsmpmSimulation<P>::sample_probes() {
+  if (probes_.empty()) return;
+  const ProbeContext ctx{st_.particles, st_.bodies, st_.index_of_id, st_.time};
+  for (auto& probe : probes_) probe->maybe_sample(ctx);
+}
+
+template <int P>
+void BsmpmSimulation<P>::advance(double dt) {
+  st_.dt = dt;
+  if (settings_.sort_interval > 0 && st_.step > 0 && st_.step % settings_.sort_interval == 0)
+    sort_particles_by_cell();
+  compute_weights();
+  particle_to_grid();                       // eqs. 5-7
+  for (auto* e : force_hooks_) e->grid_forces(st_);  // eq. 8
+  update_grid_velocity(dt);                 // eqs. 9-10 and the essential conditions
+  grid_to_particle_and_remap(dt);           // eqs. 11-13
+  finish_remap();
+  update_particle_stress(dt);               // eq. 14 and the constitutive update
+  clear_grid();
+  st_.time += dt;
+  ++st_.step;
+  sample_probes();
+}
+
+// Particles of each body sorted by cell (x-major, like the control points), so that the
+// scatter and gather walk the grid in order.
+template <int P>
+void BsmpmSimulation<P>::sort_particles_by_cell() {
+  auto& ps = st_.particles;
+  const int cy = st_.grid.by.cells();
+  std::vector<std::uint32_t> order;
+  std::vector<std::int64_t> key;
+  for (const Body& b : st_.bodies) {
+    const std::size_t n = b.size();
+    key.resize(n);
+    order.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec2& x = ps.x[b.begin + k];
+      key[k] = std::int64_t(st_.grid.bx.cell_of(x.x())) * cy + st_.grid.by.cell_of(x.y());
+    }
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t c) { return key[a] < key[c]; });
+    ps.permute(b.begin, order);
+  }
+  for (std::size_t p = 0; p < ps.size(); ++p) st_.index_of_id[ps.id[p]] = static_cast<std::uint32_t>(p);
+}
+
+template <int P>
+void BsmpmSimulation<P>::compute_weights() {
+  auto& ps = st_.particles;
+  const long n = static_cast<long>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (long p = 0; p < n; ++p) {
+    auto& w = st_.weights[p];
+    w.i0 = st_.grid.bx.evaluate(ps.x[p].x(), w.wx, w.gx);
+    w.j0 = st_.grid.by.evaluate(ps.x[p].y(), w.wy, w.gy);
+  }
+  for (auto& layer : st_.layers) layer.active = NodeBox{};
+  for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
+    const Body& body = st_.bodies[b];
+    schedules_[b].build(body.begin, body.end, st_.grid.nx(), [&](std::size_t p) { return st_.weights[p].i0; });
+    if (body.size() == 0) continue;
+    int i0 = st_.grid.nx(), i1 = 0, j0 = st_.grid.ny(), j1 = 0;
+    for (std::size_t p = body.begin; p < body.end; ++p) {
+      const auto& w = st_.weights[p];
+      i0 = std::min(i0, w.i0); i1 = std::max(i1, w.i0);
+      j0 = std::min(j0, w.j0); j1 = std::max(j1, w.j0);
+    }
+    st_.layers[body.layer].active.include(NodeBox{i0, i1 + P + 1, j0, j1 + P + 1});
+  }
+}
+
+template <int P>
+void BsmpmSimulation<P>::particle_to_grid() {
+  const int ny = st_.grid.ny();
+  auto& ps = st_.particles;
+  for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
+    GridLayer& layer = st_.layers[st_.bodies[b].layer];
+    schedules_[b].for_each([&](std::uint32_t p) {
+      const auto& w = st_.weights[p];
+      const double m = ps.mass[p];
+      const Vec2 mv = m * ps.v[p];
+      const Mat2 Vsigma = ps.volume(p) * ps.stress[p];
+      for (int a = 0; a <= P; ++a) {
+        const int row = (w.i0 + a) * ny + w.j0;
+        for (int c = 0; c <= P; ++c) {
+          const double s = w.wx[a] * w.wy[c];
+          const Vec2 grad(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]);
+          layer.mass[row + c] += m * s;          // eq. 5
+          layer.momentum[row + c] += s * mv;     // eq. 6 (numerator)
+          layer.force[row + c] -= Vsigma * grad; // eq. 7
+        }
+      }
+    });
+  }
+}
+
+template <int P>
+void BsmpmSimulation<P>::constrain(VelocityPhase phase) {
+  for (auto* e : velocity_hooks_) e->constrain_velocity(st_, phase);
+}
+
+template <int P>
+void BsmpmSimulation<P>::update_grid_velocity(double dt) {
+  const int ny = st_.grid.ny();
+  const double cut = st_.mass_cutoff;
+  for (auto& layer : st_.layers) {
+    // velocity_change holds v_I^k until the constraints have run.
+    for_each_node(layer.active, ny, [&](int n, int, int) {
+      const double m = layer.mass[n];
+      if (m > cut) {
+        const Vec2 v = layer.momentum[n] / m;                     // eq. 6
+        layer.velocity_change[n] = v;
+        layer.velocity[n] = v + (dt / m) * layer.force[n];       // eqs. 9-10
+      }
+    });
+  }
+  constrain(VelocityPhase::kUpdate);
+  // The FLIP increment sees the constrained velocity: a_I = (v_I^{k+1} - v_I^k) / dt.
+  for (auto& layer : st_.layers)
+    for_each_node(layer.active, ny, [&](int n, int, int) {
+      if (layer.mass[n] > cut) layer.velocity_change[n] = layer.velocity[n] - layer.velocity_change[n];
+      else layer.velocity[n].setZero();
+    });
+}
+
+template <int P>
+void BsmpmSimulation<P>::grid_to_particle_and_remap(double dt) {
+  const int ny = st_.grid.ny();
+  auto& ps = st_.particles;
+  const double flip = settings_.flip_fraction;
+  const Vec2 lo = st_.grid.origin(), hi = st_.grid.extent_max();
+  const Vec2 margin = 1e-9 * st_.grid.cell_size();
+  long clamped = 0;
+  for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
+    const Body& body = st_.bodies[b];
+    GridLayer& layer = st_.layers[body.layer];
+    const RigidBody* rigid = std::get_if<RigidBody>(&body.material);
+    long body_clamped = 0;
+    schedules_[b].for_each([&](std::uint32_t p) {
+      const auto& w = st_.weights[p];
+      Vec2 v_new = Vec2::Zero(), dv = Vec2::Zero();
+      for (int a = 0; a <= P; ++a) {
+        const int row = (w.i0 + a) * ny + w.j0;
+        for (int c = 0; c <= P; ++c) {
+          const double s = w.wx[a] * w.wy[c];
+          v_new += s * layer.velocity[row + c];
+          dv += s * layer.velocity_change[row + c];
+        }
+      }
+      Vec2 v;
+      if (rigid) {
+        v = rigid->velocity;
+        v_new = v;
+      } else {
+        v = flip * (ps.v[p] + dv) + (1.0 - flip) * v_new;  // eq. 11 (flip = 1: paper)
+      }
+      ps.v[p] = v;
+      Vec2 x = ps.x[p] + dt * v_new;                          // eq. 12 with v_I^{k+1}
+      const Vec2 inside = x.cwiseMax(lo + margin).cwiseMin(hi - margin);
+      if (inside != x) {
+        x = inside;
+#pragma omp atomic
+        ++body_clamped;
+      }
+      ps.x[p] = x;
+      const Vec2 mv = ps.mass[p] * v;
+      for (int a = 0; a <= P; ++a) {
+        const int row = (w.i0 + a) * ny + w.j0;
+        for (int c = 0; c <= P; ++c) layer.remap_velocity[row + c] += (w.wx[a] * w.wy[c]) * mv;  // eq. 13
+      }
+    });
+    clamped += body_clamped;
+  }
+  stats_.clamped_positions += clamped;
+}
+
+template <int P>
+void BsmpmSimulation<P>::finish_remap() {
+  const int ny = st_.grid.ny();
+  const double cut = st_.mass_cutoff;
+  for (auto& layer : st_.layers)
+    for_each_node(layer.active, ny, [&](int n, int, int) {
+      const double m = layer.mass[n];
+      if (m > cut) layer.remap_velocity[n] /= m;  // eq. 13
+      else layer.remap_velocity[n].setZero();
+    });
+  constrain(VelocityPhase::kRemap);
+}
+
+namespace {
+
+// Velocity gradient L_p = sum_I v_I (x) grad S_I(x_p^k) from the remapped velocities; its
+// symmetric part times dt is the strain increment of eq. 14.
+template <int P>
+Mat2 velocity_gradient(const ParticleWeights<P>& w, const std::vector<Vec2>& v, int ny) {
+  Mat2 L = Mat2::Zero();
+  for (int a = 0; a <= P; ++a) {
+    const int row = (w.i0 + a) * ny + w.j0;
+    for (int c = 0; c <= P; ++c) {
+      const Vec2& vi = v[row + c];
+      const double gx = w.gx[a] * w.wy[c], gy = w.wx[a] * w.gy[c];
+      L(0, 0) += vi.x() * gx; L(0, 1) += vi.x() * gy;
+      L(1, 0) += vi.y() * gx; L(1, 1) += vi.y() * gy;
+    }
+  }
+  return L;
+}
+
+}  // namespace
+
+template <int P>
+void BsmpmSimulation<P>::update_particle_stress(double dt) {
+  const int ny = st_.grid.ny();
+  auto& ps = st_.particles;
+  double speed = 0.0;
+  bool invalid = false;
+  for (std::size_t body_index = 0; body_index < st_.bodies.size(); ++body_index) {
+    const Body& body = st_.bodies[body_index];
+    const auto& v = st_.layers[body.layer].remap_velocity;
+    const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
+    double body_speed = 0.0;
+    bool body_invalid = false;
+    std::visit(
+        [&](const auto& mat) {
+          using M = std::decay_t<decltype(mat)>;
+          if constexpr (std::is_same_v<M, WeaklyCompressibleFluid>) {
+            const bool smooth = settings_.smooth_fluid_volume;
+            if (smooth) {
+              // Volume change from the velocity gradient, then J projected onto the control
+              // points and back before it enters the equation of state.
+#pragma omp parallel for schedule(static)
+              for (long p = begin; p < end; ++p) {
+                const Mat2 L = velocity_gradient<P>(st_.weights[p], v, ny);
+                gradient_scratch_[p] = L;
+                ps.J[p] *= (Mat2::Identity() + dt * L).determinant();
+              }
+              smooth_volume_ratio(body_index);
+            }
+            auto run = [&](auto viscous) {
+#pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
+              for (long p = begin; p < end; ++p) {
+                Mat2 L;
+                double J;
+                if (smooth) {
+                  L = gradient_scratch_[p];
+                  J = ps.J[p];
+                } else {
+                  L = velocity_gradient<P>(st_.weights[p], v, ny);
+                  J = ps.J[p] * (Mat2::Identity() + dt * L).determinant();
+                  ps.J[p] = J;
+                }
+                const double pressure = mat.pressure(J);
+                ps.pressure[p] = pressure;
+                ps.stress[p] = mat.template stress<decltype(viscous)::value>(pressure, L);
+                body_speed = std::max(body_speed, mat.sound_speed(J) + ps.v[p].norm());
+                body_invalid = body_invalid || !(J > 0.0) || !std::isfinite(pressure) || !ps.v[p].allFinite();
+              }
+            };
+            // Viscosity only when mu > 0: the inviscid loop has no deviatoric term at all.
+            if (mat.viscosity > 0.0) run(std::true_type{});
+            else run(std::false_type{});
+          } else if constexpr (std::is_same_v<M, ElasticSolid>) {
+#pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
+            for (long p = begin; p < end; ++p) {
+              const Mat2 L = velocity_gradient<P>(st_.weights[p], v, ny);
+              const Mat2 F = (Mat2::Identity() + dt * L) * ps.F[p];
+              const double J = F.determinant();
+              ps.F[p] = F;
+              ps.J[p] = J;
+              const Mat2 sigma = mat.stress(F);
+              ps.stress[p] = sigma;
+              ps.pressure[p] = -0.5 * sigma.trace();
+              body_speed = std::max(body_speed, mat.wave_speed(J) + ps.v[p].norm());
+              body_invalid = body_invalid || !(J > 0.0) || !sigma.allFinite() || !ps.v[p].allFinite();
+            }
+          } else {
+            body_speed = mat.velocity.norm();
+          }
+        },
+        body.material);
+    speed = std::max(speed, body_speed);
+    invalid = invalid || body_invalid;
+  }
+  max_signal_speed_ = speed;
+  if (invalid) {
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      if (ps.J[p] > 0.0 && std::isfinite(ps.pressure[p]) && ps.v[p].allFinite() && ps.x[p].allFinite()) continue;
+      char msg[320];
+      std::snprintf(msg, sizeof msg,
+                    "numerical instability at step %ld (t = %.6g s): particle %u of body '%s' at (%.4g, "
+                    "%.4g) has J = %.3g, p = %.3g, |v| = %.3g; reduce the time step (time.cfl or time.dt)",
+                    st_.step + 1, st_.time + dt, ps.id[p], st_.bodies[ps.body[p]].name.c_str(), ps.x[p].x(),
+                    ps.x[p].y(), ps.J[p], ps.pressure[p], ps.v[p].norm());
+      throw NumericalError(msg);
+    }
+  }
+}
+
+// J_I = sum_p m_p S_Ip J_p / sum_p m_p S_Ip, then J_p = sum_I S_Ip J_I: a mass-weighted
+// B-spline projection of the fluid's volume ratio that removes the particle-to-particle
+// pressure noise of weakly compressible MPM (optional; solver.smooth_fluid_volume).
+template <int P>
+void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
+  const int ny = st_.grid.ny();
+  auto& ps = st_.particles;
+  schedules_[body_index].for_each([&](std::uint32_t p) {
+    const auto& w = st_.weights[p];
+    const double m = ps.mass[p], mJ = m * ps.J[p];
+    for (int a = 0; a <= P; ++a) {
+      const int row = (w.i0 + a) * ny + w.j0;
+      for (int c = 0; c <= P; ++c) {
+        const double s = w.wx[a] * w.wy[c];
+        smoothing_mass_[row + c] += s * m;
+        smoothing_value_[row + c] += s * mJ;
+      }
+    }
+  });
+  const Body& body = st_.bodies[body_index];
+  const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
+#pragma omp parallel for schedule(static)
+  for (long p = begin; p < end; ++p) {
+    const auto& w = st_.weights[p];
+    double J = 0.0;
+    for (int a = 0; a <= P; ++a) {
+      const int row = (w.i0 + a) * ny + w.j0;
+      for (int c = 0; c <= P; ++c) J += w.wx[a] * w.wy[c] * smoothing_value_[row + c] / smoothing_mass_[row + c];
+    }
+    ps.J[p] = J;
+  }
+  const NodeBox& b = st_.layers[body.layer].active;
+  for (int i = b.i0; i < b.i1; ++i) {
+    std::fill_n(smoothing_mass_.begin() + i * ny + b.j0, b.j1 - b.j0, 0.0);
+    std::fill_n(smoothing_value_.begin() + i * ny + b.j0, b.j1 - b.j0, 0.0);
+  }
+}
+
+template <int P>
+void BsmpmSimulation<P>::clear_grid() {
+  const int ny = st_.grid.ny();
+  for (auto& layer : st_.layers) {
+    const NodeBox& b = layer.active;
+    for (int i = b.i0; i < b.i1; ++i) {
+      const int first = i * ny + b.j0, count = b.j1 - b.j0;
+      std::fill_n(layer.mass.begin() + first, count, 0.0);
+      std::fill_n(layer.momentum.begin() + first, count, Vec2::Zero());
+      std::fill_n(layer.force.begin() + first, count, Vec2::Zero());
+      std::fill_n(layer.velocity.begin() + first, count, Vec2::Zero());
+      std::fill_n(layer.velocity_change.begin() + first, count, Vec2::Zero());
+      std::fill_n(layer.remap_velocity.begin() + first, count, Vec2::Zero());
+    }
+  }
+}
+
+template class BsmpmSimulation<1>;
+template class BsmpmSimulation<2>;
+template class BsmpmSimulation<3>;
+
+}  // namespace bsmpm

@@ -1,0 +1,69 @@
+// One explicit BSMPM step, MUSL variant (METHOD.md §1; paper eqs. 5-14), for spline order P.
+// The step reads as its phases; effects (gravity, walls, contact, ...) plug into the hooks
+// declared in effect.hpp and are absent when the scene does not ask for them.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "step/effect.hpp"
+#include "step/simulation.hpp"
+#include "step/step_state.hpp"
+#include "step/strip_schedule.hpp"
+
+namespace bsmpm {
+
+template <int P>
+class BsmpmSimulation final : public Simulation {
+ public:
+  BsmpmSimulation(StepState<P> state, SolverSettings settings,
+                  std::vector<std::unique_ptr<Effect<P>>> effects,
+                  std::vector<std::unique_ptr<Probe>> probes);
+
+  void advance(double dt) override;
+  double max_signal_speed() const override { return max_signal_speed_; }
+  double time() const override { return st_.time; }
+  long step_count() const override { return st_.step; }
+  const Particles& particles() const override { return st_.particles; }
+  const std::vector<Body>& bodies() const override { return st_.bodies; }
+  const std::vector<std::uint32_t>& index_of_id() const override { return st_.index_of_id; }
+  GridInfo grid_info() const override;
+  int layer_count() const override { return static_cast<int>(st_.layers.size()); }
+  const SimulationStats& stats() const override { return stats_; }
+  std::vector<std::string> describe_effects() const override;
+  const std::vector<std::unique_ptr<Probe>>& probes() const override { return probes_; }
+  void sample_probes() override;
+
+  // Exposed for the unit tests of the transfers.
+  StepState<P>& state() { return st_; }
+  void compute_weights();
+  void particle_to_grid();
+
+ private:
+  void sort_particles_by_cell();
+  void update_grid_velocity(double dt);
+  void grid_to_particle_and_remap(double dt);
+  void finish_remap();
+  void update_particle_stress(double dt);
+  void smooth_volume_ratio(std::size_t body_index);
+  void clear_grid();
+  void constrain(VelocityPhase phase);
+
+  StepState<P> st_;
+  SolverSettings settings_;
+  std::vector<std::unique_ptr<Effect<P>>> effects_;
+  std::vector<Effect<P>*> force_hooks_, velocity_hooks_;
+  std::vector<std::unique_ptr<Probe>> probes_;
+  std::vector<StripSchedule> schedules_;  // one per body
+  std::vector<double> smoothing_mass_, smoothing_value_;  // only with smooth_fluid_volume
+  std::vector<Mat2> gradient_scratch_;
+  double max_signal_speed_ = 0.0;
+  SimulationStats stats_;
+};
+
+extern template class BsmpmSimulation<1>;
+extern template class BsmpmSimulation<2>;
+extern template class BsmpmSimulation<3>;
+
+}  // namespace bsmpm

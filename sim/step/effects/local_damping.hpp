@@ -1,0 +1,40 @@
+// Local non-viscous damping (Cundall 1987, as used for quasi-static initialisation in
+// geomechanics MPM codes): each nodal force component is reduced by alpha |f| against the
+// direction of motion, f_i -= alpha |f_i| sign(v_i). It removes the acoustic ringing of a
+// body released from an unbalanced state and vanishes at equilibrium (f = 0). Off unless a
+// scene sets solver.local_damping > 0; it is not part of the paper's method.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+
+#include "step/effect.hpp"
+
+namespace bsmpm {
+
+template <int P>
+class LocalDamping final : public Effect<P> {
+ public:
+  explicit LocalDamping(double alpha) : alpha_(alpha) {}
+  unsigned hooks() const override { return kHookGridForces; }
+  std::string describe() const override {
+    char s[120];
+    std::snprintf(s, sizeof s, "local damping: alpha = %g (Cundall, not in the paper)", alpha_);
+    return s;
+  }
+  void grid_forces(StepState<P>& st) override {
+    const int ny = st.grid.ny();
+    for (auto& layer : st.layers)
+      for_each_node(layer.active, ny, [&](int n, int, int) {
+        Vec2& f = layer.force[n];
+        const Vec2& momentum = layer.momentum[n];  // same sign as the velocity
+        for (int d = 0; d < 2; ++d)
+          if (momentum[d] != 0.0) f[d] -= alpha_ * std::abs(f[d]) * (momentum[d] > 0.0 ? 1.0 : -1.0);
+      });
+  }
+
+ private:
+  double alpha_;
+};
+
+}  // namespace bsmpm

@@ -1,0 +1,70 @@
+#include "step/run_loop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace bsmpm {
+
+RunOutcome run_to_end(Simulation& sim, const TimeStepSettings& time, double frame_interval, const RunHooks& hooks) {
+  using clock = std::chrono::steady_clock;
+  const GridInfo g = sim.grid_info();
+  const double h_min = std::min(g.cell_size.x(), g.cell_size.y());
+  const double tol = 1e-9 * std::min(frame_interval, time.end);
+  RunOutcome out;
+  out.min_dt = std::numeric_limits<double>::infinity();
+
+  sim.sample_probes();
+  if (hooks.on_frame) hooks.on_frame(sim, 0.0);
+  long next_frame = 1;
+  const auto start = clock::now();
+  auto last_report = start;
+  long steps_at_report = 0;
+  double dt = 0.0;
+  while (sim.time() < time.end - tol) {
+    if (hooks.stop && hooks.stop->load()) {
+      out.interrupted = true;
+      break;
+    }
+    dt = time_step(time, sim.max_signal_speed(), h_min);
+    // Land exactly on the next frame time (or the end).
+    const double target = std::min(next_frame * frame_interval, time.end);
+    const double remaining = target - sim.time();
+    const bool landing = dt >= remaining * (1.0 - 1e-9);
+    if (landing) dt = remaining;
+    sim.advance(dt);
+    if (!landing) {  // the shortened steps that land on frame times say nothing of stability
+      out.min_dt = std::min(out.min_dt, dt);
+      out.max_dt = std::max(out.max_dt, dt);
+    }
+    ++out.steps;
+    if (std::abs(sim.time() - next_frame * frame_interval) <= tol) {
+      if (hooks.on_frame) hooks.on_frame(sim, dt);
+      ++next_frame;
+    }
+    const auto now = clock::now();
+    if (hooks.on_progress && now - last_report >= std::chrono::seconds(1)) {
+      const double wall = std::chrono::duration<double>(now - start).count();
+      const double window = std::chrono::duration<double>(now - last_report).count();
+      RunProgress p;
+      p.step = sim.step_count();
+      p.time = sim.time();
+      p.end_time = time.end;
+      p.dt = dt;
+      p.steps_per_second = (out.steps - steps_at_report) / window;
+      const double sim_rate = sim.time() / wall;  // simulated seconds per wall second
+      p.eta_seconds = sim_rate > 0.0 ? (time.end - sim.time()) / sim_rate : 0.0;
+      p.wall_seconds = wall;
+      hooks.on_progress(p);
+      last_report = now;
+      steps_at_report = out.steps;
+    }
+  }
+  out.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
+  out.last_dt = dt;
+  if (out.min_dt > out.max_dt) out.min_dt = out.max_dt = dt;
+  return out;
+}
+
+}  // namespace bsmpm

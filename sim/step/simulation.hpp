@@ -1,0 +1,60 @@
+// The solver as the command-line program and the tests see it: one interface over the
+// three spline orders (the order is a template parameter inside; see bsmpm_simulation.hpp).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "particles/body.hpp"
+#include "particles/particles.hpp"
+#include "probes/probe.hpp"
+
+namespace bsmpm {
+
+struct GridInfo {
+  int order = 2;
+  Vec2 origin = Vec2::Zero();
+  Vec2 cell_size = Vec2::Zero();
+  int cells_x = 0, cells_y = 0;
+  Vec2 extent_max() const { return origin + Vec2(cell_size.x() * cells_x, cell_size.y() * cells_y); }
+};
+
+struct SolverSettings {
+  double flip_fraction = 1.0;        // 1 = pure FLIP increment (eq. 11); 0 = PIC
+  double mass_cutoff_ratio = 1e-6;   // nodal mass cut-off, relative to the lightest particle
+  int sort_interval = 50;            // steps between re-sorting particles by cell
+  bool smooth_fluid_volume = false;  // project the fluid volume ratio J through the grid
+  double local_damping = 0.0;        // Cundall damping coefficient (0: off)
+};
+
+struct SimulationStats {
+  long clamped_positions = 0;  // particle positions pushed back inside the domain
+};
+
+class Simulation {
+ public:
+  virtual ~Simulation() = default;
+
+  // One MUSL step of size dt (METHOD.md §1, eqs. 5-14).
+  virtual void advance(double dt) = 0;
+  // Largest c + |v| over the particles after the last step (for the CFL time step).
+  virtual double max_signal_speed() const = 0;
+
+  virtual double time() const = 0;
+  virtual long step_count() const = 0;
+  virtual const Particles& particles() const = 0;
+  virtual const std::vector<Body>& bodies() const = 0;
+  virtual const std::vector<std::uint32_t>& index_of_id() const = 0;
+  virtual GridInfo grid_info() const = 0;
+  virtual int layer_count() const = 0;
+  virtual const SimulationStats& stats() const = 0;
+  // The effects this scene composed, one line each, in the order the step runs them.
+  virtual std::vector<std::string> describe_effects() const = 0;
+  virtual const std::vector<std::unique_ptr<Probe>>& probes() const = 0;
+  // Samples every probe at the current state (the step does this after each advance()).
+  virtual void sample_probes() = 0;
+};
+
+}  // namespace bsmpm

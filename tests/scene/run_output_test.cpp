@@ -1,0 +1,155 @@
+// End to end through the program: bsmpm run writes run.h5, run.xdmf and the probe CSVs;
+// refuses to overwrite a run; keeps the frames of an interrupted or failed run.
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "io/hdf5.hpp"
+#include "test_support.hpp"
+
+using namespace bsmpm;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("bsmpm_run_test_" + std::to_string(::getpid())) / name;
+  fs::remove_all(d);
+  fs::create_directories(d.parent_path());
+  return d;
+}
+
+int run_program(const std::string& args, const fs::path& log) {
+  const std::string cmd = std::string(BSMPM_EXECUTABLE) + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  REQUIRE(WIFEXITED(status));
+  return WEXITSTATUS(status);
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Frames in a run file whose datasets read back completely.
+int readable_frames(const fs::path& h5, std::size_t particles) {
+  h5::Handle f = h5::open_file(h5.string());
+  h5::Handle frames = h5::open_group(f, "frames");
+  int n = 0;
+  for (const auto& name : h5::children(frames)) {
+    h5::Handle g = h5::open_group(frames, name);
+    if (h5::read_doubles(g, "position").size() == 2 * particles && h5::read_doubles(g, "pressure").size() == particles)
+      ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("bsmpm run writes the run file, the XDMF sidecar and the probe CSVs", "[cli][output]") {
+  const fs::path dir = fresh_dir("hydrostatic");
+  const std::string scene = test::scene_path("hydrostatic_tank.toml");
+  REQUIRE(run_program("run " + scene + " --out " + dir.string() + " --quiet --set time.end=0.02 --set output.frame_interval=0.01",
+                      dir.string() + ".log") == 0);
+  REQUIRE(fs::exists(dir / "run.h5"));
+  REQUIRE(fs::exists(dir / "run.xdmf"));
+  h5::Handle f = h5::open_file((dir / "run.h5").string());
+  CHECK(h5::get_string_attribute(f, "status") == "completed");
+  CHECK(h5::get_string_attribute(f, "format") == "bsmpm-run");
+  CHECK(h5::get_long_attribute(f, "frames_written") == 3);  // t = 0, 0.01, 0.02
+  h5::Handle prov = h5::open_group(f, "provenance");
+  CHECK(h5::get_string_attribute(prov, "scene_text") == read_text(scene));
+  CHECK(h5::get_string_attribute(prov, "effective_scene").find("end = 0.02") != std::string::npos);
+  h5::Handle particles = h5::open_group(f, "particles");
+  const std::size_t n = h5::read_uint16(particles, "body").size();
+  CHECK(n == 6400);
+  CHECK(readable_frames(dir / "run.h5", n) == 3);
+  h5::Handle frame = h5::open_group(h5::open_group(f, "frames"), "000002");
+  CHECK(h5::get_double_attribute(frame, "time") == Approx(0.02));
+  CHECK(h5::dataset_shape(frame, "stress") == std::vector<std::size_t>{n, 3});
+
+  // One CSV per probe with a header row, and the same rows in run.h5.
+  const std::string csv = read_text(dir / "P_depth100.csv");
+  CHECK(csv.find("\nt,T*,P,P*\n") != std::string::npos);
+  h5::Handle probes = h5::open_group(f, "probes");
+  const auto shape = h5::dataset_shape(probes, "P_depth100");
+  REQUIRE(shape.size() == 2);
+  CHECK(shape[1] == 4);
+  const auto lines = std::count(csv.begin(), csv.end(), '\n');
+  CHECK(static_cast<std::size_t>(lines) == shape[0] + 2);  // comment + header + rows
+  CHECK(read_text(dir / "run.xdmf").find("run.h5:/frames/000002/position") != std::string::npos);
+}
+
+TEST_CASE("bsmpm run refuses to overwrite a run without --force", "[cli][output]") {
+  const fs::path dir = fresh_dir("twice");
+  const std::string args = "run " + test::scene_path("hydrostatic_tank.toml") + " --out " + dir.string() +
+                           " --quiet --set time.end=0.005 --set output.frame_interval=0.005";
+  REQUIRE(run_program(args, dir.string() + ".log") == 0);
+  const auto before = fs::last_write_time(dir / "run.h5");
+  CHECK(run_program(args, dir.string() + ".log") == 2);
+  CHECK(read_text(dir.string() + ".log").find("holds a run already") != std::string::npos);
+  CHECK(fs::last_write_time(dir / "run.h5") == before);
+  CHECK(run_program(args + " --force", dir.string() + ".log") == 0);
+}
+
+TEST_CASE("Ctrl-C stops a run and keeps its frames", "[cli][output]") {
+  const fs::path dir = fresh_dir("interrupted");
+  const std::string scene = test::scene_path("lobovsky_h300.toml");
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    const std::string out = dir.string();
+    if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
+    execl(BSMPM_EXECUTABLE, BSMPM_EXECUTABLE, "run", scene.c_str(), "--out", out.c_str(), "--quiet", "--threads",
+          "1", "--set", "grid.cell_size=0.01", "--set", "output.frame_interval=0.002", nullptr);
+    _exit(127);
+  }
+  // Wait until a few frames are on disk, then interrupt.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  std::string xdmf;
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (fs::exists(dir / "run.xdmf")) xdmf = read_text(dir / "run.xdmf");
+    if (xdmf.find("frame 000003") != std::string::npos) break;
+  }
+  REQUIRE(xdmf.find("frame 000003") != std::string::npos);
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  h5::Handle f = h5::open_file((dir / "run.h5").string());
+  CHECK(h5::get_string_attribute(f, "status") == "interrupted");
+  const long written = h5::get_long_attribute(f, "frames_written");
+  CHECK(written >= 4);
+  const std::size_t n = h5::read_uint16(h5::open_group(f, "particles"), "body").size();
+  CHECK(readable_frames(dir / "run.h5", n) == written);
+}
+
+TEST_CASE("A numerically unstable run stops with exit code 3 and keeps its frames", "[cli][output]") {
+  // A fixed step 40 times the acoustic CFL limit of this grid blows up within a few steps.
+  const fs::path dir = fresh_dir("unstable");
+  std::string text = read_text(test::scene_path("hydrostatic_tank.toml"));
+  const auto cfl = text.find("cfl = 0.3");
+  REQUIRE(cfl != std::string::npos);
+  text.replace(cfl, 9, "dt = 2e-3");
+  const auto max_dt = text.find("max_dt = 1.0e-3");
+  REQUIRE(max_dt != std::string::npos);
+  text.erase(max_dt, 15);
+  const fs::path scene = dir.string() + ".toml";
+  std::ofstream(scene) << text;
+  const int code = run_program("run " + scene.string() + " --out " + dir.string() + " --quiet", dir.string() + ".log");
+  CHECK(code == 3);
+  const std::string log = read_text(dir.string() + ".log");
+  CHECK(log.find("numerical instability") != std::string::npos);
+  h5::Handle f = h5::open_file((dir / "run.h5").string());
+  CHECK(h5::get_string_attribute(f, "status").rfind("failed: numerical instability", 0) == 0);
+  CHECK(h5::get_long_attribute(f, "frames_written") >= 1);  // the initial state at least
+}

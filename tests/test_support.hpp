@@ -1,0 +1,39 @@
+// Helpers shared by the test suites: repository paths and running a scene in-process.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/scene_builder.hpp"
+#include "scene/scene_loader.hpp"
+#include "step/run_loop.hpp"
+
+namespace bsmpm::test {
+
+inline std::string source_path(const std::string& relative) { return std::string(BSMPM_SOURCE_DIR) + "/" + relative; }
+inline std::string scene_path(const std::string& name) { return source_path("scenes/" + name); }
+
+// Loads scenes/NAME with overrides, builds and runs it to its end time.
+struct SceneRun {
+  SceneDescription scene;
+  std::unique_ptr<Simulation> sim;
+  RunOutcome outcome;
+};
+
+inline SceneRun run_scene(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  SceneRun r;
+  r.scene = load_scene(scene_path(name), overrides);
+  r.sim = build_simulation(r.scene);
+  r.outcome = run_to_end(*r.sim, r.scene.time, r.scene.frame_interval, RunHooks{});
+  return r;
+}
+
+// The probe called `name`, or nullptr.
+inline const Probe* find_probe(const Simulation& sim, const std::string& name) {
+  for (const auto& p : sim.probes())
+    if (p->name() == name) return p.get();
+  return nullptr;
+}
+
+}  // namespace bsmpm::test
