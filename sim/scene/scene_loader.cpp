@@ -246,7 +246,8 @@ int SceneDescription::cells_y() const {
 }
 
 SceneDescription load_scene_text(const std::string& text, const std::string& path,
-                                 const std::vector<std::string>& overrides) {
+                                 const std::vector<std::string>& overrides,
+                                 const std::vector<SceneExtension>& extensions) {
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -314,16 +315,19 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
   }
   read_probes(t, s);
   read_contacts(t, s);
+  for (const auto& ext : extensions)
+    if (auto table = t.optional_table(ext.table)) ext.validate(*table);
   t.finish();
   return s;
 }
 
-SceneDescription load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+SceneDescription load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                            const std::vector<SceneExtension>& extensions) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();
-  return load_scene_text(text.str(), path, overrides);
+  return load_scene_text(text.str(), path, overrides, extensions);
 }
 
 }  // namespace bsmpm
