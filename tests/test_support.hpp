@@ -8,6 +8,7 @@
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "step/run_loop.hpp"
+#include "step/time_step.hpp"
 
 namespace bsmpm::test {
 
@@ -27,6 +28,18 @@ inline SceneRun run_scene(const std::string& name, const std::vector<std::string
   r.sim = build_simulation(r.scene);
   r.outcome = run_to_end(*r.sim, r.scene.time, r.scene.frame_interval, RunHooks{});
   return r;
+}
+
+// Advances a built scene step by step to its end time with the scene's time step, calling
+// after_step(sim) after every step.
+template <class F>
+void step_through(Simulation& sim, const SceneDescription& scene, F&& after_step) {
+  const GridInfo g = sim.grid_info();
+  const double h_min = std::min(g.cell_size.x(), g.cell_size.y());
+  while (sim.time() < scene.time.end) {
+    sim.advance(time_step(scene.time, sim.max_signal_speed(), h_min));
+    after_step(sim);
+  }
 }
 
 // The probe called `name`, or nullptr.

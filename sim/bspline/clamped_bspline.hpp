@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "bspline/cox_de_boor.hpp"
 
@@ -45,6 +46,29 @@ class ClampedBSpline {
 
   // Integral of N_i over the axis: (t_{i+P+1} - t_i) / (P+1).
   double integral(int i) const { return (knot(i + P + 1) - knot(i)) / (P + 1); }
+
+  // Range [first, last] of the basis functions that are non-zero somewhere on [a, b]
+  // (a <= b; a point when a == b). last < first when there is none.
+  std::pair<int, int> support_range(double a, double b) const {
+    if (a == b) {
+      Weights w, dw;
+      const int first = evaluate(a, w, dw);
+      int lo = first + P + 1, hi = first - 1;
+      for (int k = 0; k <= P; ++k)
+        if (w[k] > 0.0) {
+          lo = std::min(lo, first + k);
+          hi = std::max(hi, first + k);
+        }
+      return {lo, hi};
+    }
+    int lo = basis_count(), hi = -1;
+    for (int i = 0; i < basis_count(); ++i)
+      if (knot(i) < b && knot(i + P + 1) > a) {  // open support (t_i, t_{i+P+1}) meets (a, b)
+        lo = std::min(lo, i);
+        hi = std::max(hi, i);
+      }
+    return {lo, hi};
+  }
 
   // Cell containing x (points outside are attributed to the nearest cell).
   int cell_of(double x) const {

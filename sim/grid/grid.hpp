@@ -51,6 +51,8 @@ struct GridLayer {
   std::vector<Vec2> velocity;        // v_I^{k+1} after all constraints (eq. 10)
   std::vector<Vec2> velocity_change; // v_I^{k+1} - v_I^k, the FLIP increment of eq. 11
   std::vector<Vec2> remap_velocity;  // eq. 13: remapped momentum, then velocity
+  std::vector<Vec2> mass_gradient;   // sum_p m_p grad S_Ip: contact normals (contact only)
+  bool tracks_mass_gradient = false;
   NodeBox active;                    // nodes written this step
 
   void resize(int n) {
@@ -60,6 +62,7 @@ struct GridLayer {
     velocity.assign(n, Vec2::Zero());
     velocity_change.assign(n, Vec2::Zero());
     remap_velocity.assign(n, Vec2::Zero());
+    if (tracks_mass_gradient) mass_gradient.assign(n, Vec2::Zero());
   }
 };
 

@@ -8,8 +8,11 @@
 #include "probes/material_point.hpp"
 #include "probes/pressure_probe.hpp"
 #include "step/bsmpm_simulation.hpp"
+#include "contact/li_lian_2024_contact.hpp"
+#include "step/effects/clamped_nodes.hpp"
 #include "step/effects/gravity.hpp"
 #include "step/effects/local_damping.hpp"
+#include "step/effects/rigid_motion.hpp"
 #include "step/effects/tank_walls.hpp"
 
 namespace bsmpm {
@@ -85,10 +88,48 @@ std::unique_ptr<Probe> make_probe(const SceneDescription& scene, const ProbeDesc
   return nullptr;
 }
 
+// Grid fields: without contacts every body shares one field (standard MPM). With contacts
+// every body has its own field and interacts only through the declared pairs; a "stick"
+// pair of deformable bodies shares one field (single field, as standard MPM). Fields that
+// take part in contact also accumulate mass gradients for the normals.
+template <int P>
+void assign_layers(const SceneDescription& scene, StepState<P>& st) {
+  const std::size_t n = st.bodies.size();
+  std::vector<int> root(n);
+  for (std::size_t b = 0; b < n; ++b) root[b] = scene.contacts.empty() ? 0 : static_cast<int>(b);
+  auto find = [&](int b) {
+    while (root[b] != b) b = root[b] = root[root[b]];
+    return b;
+  };
+  for (const auto& c : scene.contacts)
+    if (c.kind == ContactKind::kStick && !is_rigid(st.bodies[c.body_a].material) && !is_rigid(st.bodies[c.body_b].material))
+      root[std::max(find(c.body_a), find(c.body_b))] = std::min(find(c.body_a), find(c.body_b));
+  // Number the fields in body order.
+  std::vector<int> layer_of_root(n, -1);
+  int layers = 0;
+  for (std::size_t b = 0; b < n; ++b) {
+    const int r = scene.contacts.empty() ? 0 : find(static_cast<int>(b));
+    if (layer_of_root[r] < 0) layer_of_root[r] = layers++;
+    st.bodies[b].layer = layer_of_root[r];
+  }
+  for (std::size_t b = 0; b < n; ++b) {
+    if (!is_rigid(st.bodies[b].material)) continue;
+    bool paired = false;
+    for (const auto& c : scene.contacts) paired = paired || c.body_a == int(b) || c.body_b == int(b);
+    if (!paired)
+      throw SceneError(scene.bodies[b].where, "bodies[" + std::to_string(b) + "].material",
+                       "rigid body \"" + st.bodies[b].name + "\" acts only through contact: add a [[contacts]] entry for it");
+  }
+  st.layers.resize(layers);
+  for (const auto& c : scene.contacts)
+    if (st.bodies[c.body_a].layer != st.bodies[c.body_b].layer) {
+      st.layers[st.bodies[c.body_a].layer].tracks_mass_gradient = true;
+      st.layers[st.bodies[c.body_b].layer].tracks_mass_gradient = true;
+    }
+}
+
 template <int P>
 std::unique_ptr<Simulation> build(const SceneDescription& scene) {
-  if (!scene.contacts.empty())
-    throw SceneError(scene.contacts.front().where, "contacts", "multi-body contact is not available in this build");
   StepState<P> st;
   st.grid = Grid<P>(scene.domain_min, scene.actual_cell_size(), scene.cells_x(), scene.cells_y());
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -100,18 +141,30 @@ std::unique_ptr<Simulation> build(const SceneDescription& scene) {
     if (body.size() == 0)
       throw SceneError(desc.where, "bodies[" + std::to_string(b) + "].shape",
                        "the shape holds no particle at this grid resolution");
-    if (is_rigid(body.material))
-      throw SceneError(desc.where, "bodies[" + std::to_string(b) + "].material",
-                       "rigid bodies take part through [[contacts]], which this build does not support yet");
-    body.layer = 0;
     st.bodies.push_back(std::move(body));
   }
-  st.layers.resize(1);
+  assign_layers(scene, st);
 
+  // Effects in the order the step runs them: forces, then velocity constraints (rigid
+  // motion before contact so contact sees it; walls and clamps last so they hold exactly).
   std::vector<std::unique_ptr<Effect<P>>> effects;
   if (scene.gravity > 0.0) effects.push_back(std::make_unique<Gravity<P>>(scene.gravity, scene.slope_deg));
   if (scene.solver.local_damping > 0.0) effects.push_back(std::make_unique<LocalDamping<P>>(scene.solver.local_damping));
+  std::vector<typename RigidMotion<P>::Rigid> rigid;
+  for (const Body& b : st.bodies)
+    if (const auto* r = std::get_if<RigidBody>(&b.material)) rigid.push_back({b.name, b.layer, r->velocity});
+  if (!rigid.empty()) effects.push_back(std::make_unique<RigidMotion<P>>(std::move(rigid)));
+  std::vector<ContactPair> pairs;
+  for (const auto& c : scene.contacts)
+    if (st.bodies[c.body_a].layer != st.bodies[c.body_b].layer)  // a merged stick pair needs nothing
+      pairs.push_back({c.body_a, c.body_b, scene.bodies[c.body_a].name, scene.bodies[c.body_b].name, c.kind,
+                       c.friction, c.distance_check});
+  if (!pairs.empty()) effects.push_back(std::make_unique<LiLian2024Contact<P>>(std::move(pairs)));
   effects.push_back(std::make_unique<TankWalls<P>>(scene.walls));
+  std::vector<typename ClampedNodes<P>::Clamp> clamps;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    for (const Rectangle& r : scene.bodies[b].clamps) clamps.push_back({st.bodies[b].name, st.bodies[b].layer, r.min, r.max, {}});
+  if (!clamps.empty()) effects.push_back(std::make_unique<ClampedNodes<P>>(st.grid, std::move(clamps)));
 
   std::vector<std::unique_ptr<Probe>> probes;
   for (const auto& d : scene.probes) probes.push_back(make_probe(scene, d, st.particles, st.bodies));

@@ -104,6 +104,13 @@ Rectangle read_rectangle(TableReader& t) {
   return r;
 }
 
+// A clamp region may be a segment or a point (max == min along an axis).
+Rectangle read_region(TableReader& t) {
+  Rectangle r{t.vec2("min"), t.vec2("max")};
+  if (!(r.max.x() >= r.min.x() && r.max.y() >= r.min.y())) t.fail("max", "must not be below min in x or y");
+  return r;
+}
+
 Shape read_shape(TableReader t, const SceneDescription& s) {
   const std::string type = t.choice("type", {"rectangle", "disk", "polygon"});
   Shape shape;
@@ -145,7 +152,7 @@ void read_bodies(TableReader& root, SceneDescription& s, const std::map<std::str
     if (b.initial_stress == InitialStress::kHydrostatic && !is_fluid(b.material))
       t.fail("initial_stress", "\"hydrostatic\" applies to fluid bodies only");
     for (auto& c : t.tables("clamp")) {
-      b.clamps.push_back(read_rectangle(c));
+      b.clamps.push_back(read_region(c));
       c.finish();
     }
     if (!b.clamps.empty() && is_rigid(b.material)) t.fail("clamp", "a rigid body's motion is prescribed already");

@@ -53,7 +53,7 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
     if (e->hooks() & kHookGridForces) force_hooks_.push_back(e.get());
     if (e->hooks() & kHookConstrainVelocity) velocity_hooks_.push_back(e.get());
   }
-  schedules_.resize(st_.bodies.size());
+  st_.schedules.resize(st_.bodies.size());
   if (settings_.smooth_fluid_volume) {
     smoothing_mass_.assign(st_.grid.node_count(), 0.0);
     smoothing_value_.assign(st_.grid.node_count(), 0.0);
@@ -97,6 +97,7 @@ void BsmpmSimulation<P>::sample_probes() {
 template <int P>
 void BsmpmSimulation<P>::advance(double dt) {
   st_.dt = dt;
+  st_.diagnostics = StepDiagnostics{};
   if (settings_.sort_interval > 0 && st_.step > 0 && st_.step % settings_.sort_interval == 0)
     sort_particles_by_cell();
   compute_weights();
@@ -148,7 +149,7 @@ void BsmpmSimulation<P>::compute_weights() {
   for (auto& layer : st_.layers) layer.active = NodeBox{};
   for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
     const Body& body = st_.bodies[b];
-    schedules_[b].build(body.begin, body.end, st_.grid.nx(), [&](std::size_t p) { return st_.weights[p].i0; });
+    st_.schedules[b].build(body.begin, body.end, st_.grid.nx(), [&](std::size_t p) { return st_.weights[p].i0; });
     if (body.size() == 0) continue;
     int i0 = st_.grid.nx(), i1 = 0, j0 = st_.grid.ny(), j1 = 0;
     for (std::size_t p = body.begin; p < body.end; ++p) {
@@ -162,27 +163,36 @@ void BsmpmSimulation<P>::compute_weights() {
 
 template <int P>
 void BsmpmSimulation<P>::particle_to_grid() {
+  for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
+    // Mass gradients only for fields that take part in contact (their normals).
+    if (st_.layers[st_.bodies[b].layer].tracks_mass_gradient) scatter_body<true>(b);
+    else scatter_body<false>(b);
+  }
+}
+
+template <int P>
+template <bool kMassGradient>
+void BsmpmSimulation<P>::scatter_body(std::size_t b) {
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
-  for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
-    GridLayer& layer = st_.layers[st_.bodies[b].layer];
-    schedules_[b].for_each([&](std::uint32_t p) {
-      const auto& w = st_.weights[p];
-      const double m = ps.mass[p];
-      const Vec2 mv = m * ps.v[p];
-      const Mat2 Vsigma = ps.volume(p) * ps.stress[p];
-      for (int a = 0; a <= P; ++a) {
-        const int row = (w.i0 + a) * ny + w.j0;
-        for (int c = 0; c <= P; ++c) {
-          const double s = w.wx[a] * w.wy[c];
-          const Vec2 grad(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]);
-          layer.mass[row + c] += m * s;          // eq. 5
-          layer.momentum[row + c] += s * mv;     // eq. 6 (numerator)
-          layer.force[row + c] -= Vsigma * grad; // eq. 7
-        }
+  GridLayer& layer = st_.layers[st_.bodies[b].layer];
+  st_.schedules[b].for_each([&](std::uint32_t p) {
+    const auto& w = st_.weights[p];
+    const double m = ps.mass[p];
+    const Vec2 mv = m * ps.v[p];
+    const Mat2 Vsigma = ps.volume(p) * ps.stress[p];
+    for (int a = 0; a <= P; ++a) {
+      const int row = (w.i0 + a) * ny + w.j0;
+      for (int c = 0; c <= P; ++c) {
+        const double s = w.wx[a] * w.wy[c];
+        const Vec2 grad(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]);
+        layer.mass[row + c] += m * s;          // eq. 5
+        layer.momentum[row + c] += s * mv;     // eq. 6 (numerator)
+        layer.force[row + c] -= Vsigma * grad; // eq. 7
+        if constexpr (kMassGradient) layer.mass_gradient[row + c] += m * grad;  // contact normals
       }
-    });
-  }
+    }
+  });
 }
 
 template <int P>
@@ -227,7 +237,7 @@ void BsmpmSimulation<P>::grid_to_particle_and_remap(double dt) {
     GridLayer& layer = st_.layers[body.layer];
     const RigidBody* rigid = std::get_if<RigidBody>(&body.material);
     long body_clamped = 0;
-    schedules_[b].for_each([&](std::uint32_t p) {
+    st_.schedules[b].for_each([&](std::uint32_t p) {
       const auto& w = st_.weights[p];
       Vec2 v_new = Vec2::Zero(), dv = Vec2::Zero();
       for (int a = 0; a <= P; ++a) {
@@ -394,7 +404,7 @@ template <int P>
 void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
-  schedules_[body_index].for_each([&](std::uint32_t p) {
+  st_.schedules[body_index].for_each([&](std::uint32_t p) {
     const auto& w = st_.weights[p];
     const double m = ps.mass[p], mJ = m * ps.J[p];
     for (int a = 0; a <= P; ++a) {
@@ -438,6 +448,7 @@ void BsmpmSimulation<P>::clear_grid() {
       std::fill_n(layer.velocity.begin() + first, count, Vec2::Zero());
       std::fill_n(layer.velocity_change.begin() + first, count, Vec2::Zero());
       std::fill_n(layer.remap_velocity.begin() + first, count, Vec2::Zero());
+      if (layer.tracks_mass_gradient) std::fill_n(layer.mass_gradient.begin() + first, count, Vec2::Zero());
     }
   }
 }

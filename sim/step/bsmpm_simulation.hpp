@@ -10,7 +10,6 @@
 #include "step/effect.hpp"
 #include "step/simulation.hpp"
 #include "step/step_state.hpp"
-#include "step/strip_schedule.hpp"
 
 namespace bsmpm {
 
@@ -31,6 +30,7 @@ class BsmpmSimulation final : public Simulation {
   GridInfo grid_info() const override;
   int layer_count() const override { return static_cast<int>(st_.layers.size()); }
   const SimulationStats& stats() const override { return stats_; }
+  const StepDiagnostics& last_step() const override { return st_.diagnostics; }
   std::vector<std::string> describe_effects() const override;
   const std::vector<std::unique_ptr<Probe>>& probes() const override { return probes_; }
   void sample_probes() override;
@@ -41,6 +41,8 @@ class BsmpmSimulation final : public Simulation {
   void particle_to_grid();
 
  private:
+  template <bool kMassGradient>
+  void scatter_body(std::size_t b);
   void sort_particles_by_cell();
   void update_grid_velocity(double dt);
   void grid_to_particle_and_remap(double dt);
@@ -55,7 +57,6 @@ class BsmpmSimulation final : public Simulation {
   std::vector<std::unique_ptr<Effect<P>>> effects_;
   std::vector<Effect<P>*> force_hooks_, velocity_hooks_;
   std::vector<std::unique_ptr<Probe>> probes_;
-  std::vector<StripSchedule> schedules_;  // one per body
   std::vector<double> smoothing_mass_, smoothing_value_;  // only with smooth_fluid_volume
   std::vector<Mat2> gradient_scratch_;
   double max_signal_speed_ = 0.0;

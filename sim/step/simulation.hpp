@@ -29,6 +29,12 @@ struct SolverSettings {
   double local_damping = 0.0;        // Cundall damping coefficient (0: off)
 };
 
+// What the last step did, for tests and diagnostics.
+struct StepDiagnostics {
+  int contact_nodes = 0;         // control points where a contact force acted
+  double contact_impulse = 0.0;  // sum of |f_contact| dt over them [N s / m]
+};
+
 struct SimulationStats {
   long clamped_positions = 0;  // particle positions pushed back inside the domain
 };
@@ -50,6 +56,7 @@ class Simulation {
   virtual GridInfo grid_info() const = 0;
   virtual int layer_count() const = 0;
   virtual const SimulationStats& stats() const = 0;
+  virtual const StepDiagnostics& last_step() const = 0;
   // The effects this scene composed, one line each, in the order the step runs them.
   virtual std::vector<std::string> describe_effects() const = 0;
   virtual const std::vector<std::unique_ptr<Probe>>& probes() const = 0;

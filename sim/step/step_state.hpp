@@ -7,6 +7,8 @@
 #include "grid/grid.hpp"
 #include "particles/body.hpp"
 #include "particles/particles.hpp"
+#include "step/simulation.hpp"
+#include "step/strip_schedule.hpp"
 
 namespace bsmpm {
 
@@ -26,7 +28,9 @@ struct StepState {
   std::vector<Body> bodies;
   std::vector<GridLayer> layers;
   std::vector<ParticleWeights<P>> weights;
+  std::vector<StripSchedule> schedules;    // per body: conflict-free scatter order
   std::vector<std::uint32_t> index_of_id;  // particle id -> current slot
+  StepDiagnostics diagnostics;             // what the last step did (contact, ...)
   double time = 0.0;
   double dt = 0.0;
   long step = 0;
