@@ -90,12 +90,11 @@ template <int P>
 std::string LiLian2024Contact<P>::describe() const {
   std::string s = "contact (Li, Lian et al. 2024):";
   for (const auto& p : pairs_) {
+    char kind[64];
+    if (p.kind == ContactKind::kCoulomb) std::snprintf(kind, sizeof kind, "Coulomb mu = %g", p.friction);
+    else std::snprintf(kind, sizeof kind, "%s", p.kind == ContactKind::kFrictionless ? "frictionless" : "stick");
     char buf[200];
-    const char* kind = p.kind == ContactKind::kFrictionless ? "frictionless"
-                       : p.kind == ContactKind::kCoulomb    ? "Coulomb"
-                                                            : "stick";
-    std::snprintf(buf, sizeof buf, " [%s-%s %s%s%s]", p.name_r.c_str(), p.name_s.c_str(), kind,
-                  p.kind == ContactKind::kCoulomb ? (" mu=" + std::to_string(p.friction)).c_str() : "",
+    std::snprintf(buf, sizeof buf, " [%s-%s %s%s]", p.name_r.c_str(), p.name_s.c_str(), kind,
                   p.kind != ContactKind::kStick && !p.distance_check ? ", approach only" : "");
     s += buf;
   }

@@ -23,21 +23,18 @@ struct SignalSpeed {
 std::string describe_material(const Body& b) {
   char s[320];
   if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&b.material)) {
-    std::snprintf(s, sizeof s,
-                  "fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s",
-                  b.name.c_str(), f->eos == EquationOfState::kTait ? "Tait" : "linear",
-                  f->bulk_modulus, f->sound_speed(1.0), f->density,
-                  f->viscosity > 0.0 ? ("viscosity " + std::to_string(f->viscosity) + " Pa s").c_str()
-                                     : "inviscid");
+    char viscosity[64] = "inviscid (no viscous term)";
+    if (f->viscosity > 0.0) std::snprintf(viscosity, sizeof viscosity, "viscosity %g Pa s", f->viscosity);
+    std::snprintf(s, sizeof s, "fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s",
+                  b.name.c_str(), f->eos == EquationOfState::kTait ? "Tait" : "linear", f->bulk_modulus,
+                  f->sound_speed(1.0), f->density, viscosity);
   } else if (const auto* e = std::get_if<ElasticSolid>(&b.material)) {
     std::snprintf(s, sizeof s, "elastic stress [%s]: %s, E = %g Pa, nu = %g, rho0 = %g kg/m3",
                   b.name.c_str(),
                   e->model == ElasticModel::kNeoHookean ? "Neo-Hookean" : "Saint Venant-Kirchhoff",
                   e->youngs_modulus, e->poisson_ratio, e->density);
   } else {
-    const auto& r = std::get<RigidBody>(b.material);
-    std::snprintf(s, sizeof s, "rigid motion [%s]: prescribed velocity (%g, %g) m/s", b.name.c_str(),
-                  r.velocity.x(), r.velocity.y());
+    return "";  // rigid bodies carry no stress; the rigid motion effect describes them
   }
   return s;
 }
@@ -81,7 +78,8 @@ GridInfo BsmpmSimulation<P>::grid_info() const {
 template <int P>
 std::vector<std::string> BsmpmSimulation<P>::describe_effects() const {
   std::vector<std::string> lines;
-  for (const Body& b : st_.bodies) lines.push_back(describe_material(b));
+  for (const Body& b : st_.bodies)
+    if (std::string line = describe_material(b); !line.empty()) lines.push_back(line);
   for (const auto& e : effects_) lines.push_back(e->describe());
   for (const auto& p : probes_) lines.push_back("probe " + p->describe());
   return lines;
