@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "settings/render_options.hpp"
 
 namespace bsmpm::cli {
 
@@ -26,7 +27,7 @@ int command_check(const std::vector<std::string>& argv) {
   }
   if (args.positional().size() != 1) throw UsageError("check expects one scene file (see bsmpm check --help)");
   const int threads = apply_thread_option(args);
-  const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"));
+  const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"), {render::render_scene_extension()});
   auto sim = build_simulation(scene);
   print_scene_summary(stdout, scene, *sim, threads);
   std::printf("ok: %zu particles\n", sim->particles().size());

@@ -3,18 +3,19 @@
 // keeps everything written so far.
 #include <unistd.h>
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
+#include "cli/interruption.hpp"
+#include "cli/progress.hpp"
 #include "cli/scene_summary.hpp"
 #include "core/error.hpp"
 #include "io/run_writer.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "settings/render_options.hpp"
 #include "step/run_loop.hpp"
 
 namespace fs = std::filesystem;
@@ -42,21 +43,6 @@ const char* kHelp =
     "\n"
     "exit status: 0 done, 2 bad scene or usage, 3 numerical instability (frames kept),\n"
     "130 interrupted (frames kept), 1 other failure\n";
-
-std::atomic<bool> g_stop{false};
-
-extern "C" void on_signal(int sig) {
-  g_stop.store(true);
-  std::signal(sig, SIG_DFL);  // a second Ctrl-C ends the program at once
-}
-
-std::string format_duration(double s) {
-  char buf[32];
-  if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
-  else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(s) % 60);
-  else std::snprintf(buf, sizeof buf, "%.0fs", s);
-  return buf;
-}
 
 // Refuses to overwrite another run; with --force removes the files a run writes.
 void prepare_directory(const fs::path& dir, bool force) {
@@ -88,7 +74,7 @@ int command_run(const std::vector<std::string>& argv) {
   const int threads = apply_thread_option(args);
 
   // Validate and build everything before touching the disk: a bad scene leaves nothing.
-  const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"));
+  const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"), {render::render_scene_extension()});
   auto sim = build_simulation(scene);
   const fs::path dir = args.option("--out");
   prepare_directory(dir, args.flag("--force"));
@@ -118,7 +104,7 @@ int command_run(const std::vector<std::string>& argv) {
   const bool tty = isatty(STDERR_FILENO);
   const double t_scale = scene.reference.time_factor();
   RunHooks hooks;
-  hooks.stop = &g_stop;
+  hooks.stop = interrupted;
   hooks.on_frame = [&](const Simulation& s, double dt) { writer->write_frame(s, dt); };
   double last_line = -1e9;
   if (!args.flag("--quiet"))
@@ -130,8 +116,7 @@ int command_run(const std::vector<std::string>& argv) {
                    p.steps_per_second, format_duration(p.eta_seconds).c_str(), tty ? "   " : "\n");
       std::fflush(stderr);
     };
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  catch_interruptions();
 
   RunOutcome outcome;
   try {

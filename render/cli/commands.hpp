@@ -12,5 +12,8 @@ enum ExitCode { kOk = 0, kFailure = 1, kBadInput = 2, kUnstable = 3, kInterrupte
 int command_run(const std::vector<std::string>& args);
 int command_check(const std::vector<std::string>& args);
 int command_bench(const std::vector<std::string>& args);
+int command_render(const std::vector<std::string>& args);
+int command_movie(const std::vector<std::string>& args);
+int command_compare(const std::vector<std::string>& args);
 
 }  // namespace bsmpm::cli

@@ -19,6 +19,12 @@ const char* kHelp =
     "  run SCENE --out DIR     simulate a scene; frames to DIR/run.h5 (+ .xdmf), probes to CSV\n"
     "  check SCENE             validate a scene and print what a run would do\n"
     "  bench SCENE             time the step: ms per step, particle-steps per second\n"
+    "  render RUN.h5 --out DIR draw frames of a run as PNG images (off screen), or a grid\n"
+    "                          of frames as one figure (--layout 2x3 --out fig.png)\n"
+    "  movie RUN.h5 --out FILE.mp4\n"
+    "                          the run as an H.264 movie, in slow motion\n"
+    "  compare A.png B.png     image difference metrics (max, RMS, PSNR, SSIM) and a\n"
+    "                          diff image; fails beyond a --tolerance\n"
     "\n"
     "  bsmpm COMMAND --help    the options of a command\n"
     "  bsmpm --version         program version\n";
@@ -42,6 +48,9 @@ int main(int argc, char** argv) {
     if (command == "run") return cli::command_run(args);
     if (command == "check") return cli::command_check(args);
     if (command == "bench") return cli::command_bench(args);
+    if (command == "render") return cli::command_render(args);
+    if (command == "movie") return cli::command_movie(args);
+    if (command == "compare") return cli::command_compare(args);
     throw UsageError("unknown command '" + command + "' (see bsmpm --help)");
   } catch (const SceneError& e) {
     std::fprintf(stderr, "bsmpm: error: %s\n", e.what());

@@ -23,7 +23,7 @@ RunOutcome run_to_end(Simulation& sim, const TimeStepSettings& time, double fram
   long steps_at_report = 0;
   double dt = 0.0;
   while (sim.time() < time.end - tol) {
-    if (hooks.stop && hooks.stop->load()) {
+    if (hooks.stop && hooks.stop()) {
       out.interrupted = true;
       break;
     }

@@ -2,7 +2,6 @@
 // frame times, reports progress and stops cleanly when asked to (Ctrl-C).
 #pragma once
 
-#include <atomic>
 #include <functional>
 
 #include "step/simulation.hpp"
@@ -21,7 +20,7 @@ struct RunProgress {
 struct RunHooks {
   std::function<void(const Simulation&, double dt)> on_frame;      // at t = 0, k * interval, end
   std::function<void(const RunProgress&)> on_progress;              // about once a second
-  const std::atomic<bool>* stop = nullptr;                          // set to stop after the current step
+  std::function<bool()> stop;                                       // true: stop after the current step
 };
 
 struct RunOutcome {
