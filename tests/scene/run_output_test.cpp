@@ -99,8 +99,11 @@ TEST_CASE("bsmpm run refuses to overwrite a run without --force", "[cli][output]
   CHECK(run_program(args + " --force", dir.string() + ".log") == 0);
 }
 
-TEST_CASE("Ctrl-C stops a run and keeps its frames", "[cli][output]") {
-  const fs::path dir = fresh_dir("interrupted");
+namespace {
+
+// Starts `bsmpm run` on the coarse Lobovsky tank with frequent frames, waits until at least
+// four frames are on disk, then sends `signal`; returns the wait status.
+int run_and_signal(const fs::path& dir, int signal) {
   const std::string scene = test::scene_path("lobovsky_h300.toml");
   const pid_t pid = fork();
   REQUIRE(pid >= 0);
@@ -111,7 +114,6 @@ TEST_CASE("Ctrl-C stops a run and keeps its frames", "[cli][output]") {
           "1", "--set", "grid.cell_size=0.01", "--set", "output.frame_interval=0.002", nullptr);
     _exit(127);
   }
-  // Wait until a few frames are on disk, then interrupt.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   std::string xdmf;
   while (std::chrono::steady_clock::now() < deadline) {
@@ -119,10 +121,18 @@ TEST_CASE("Ctrl-C stops a run and keeps its frames", "[cli][output]") {
     if (fs::exists(dir / "run.xdmf")) xdmf = read_text(dir / "run.xdmf");
     if (xdmf.find("frame 000003") != std::string::npos) break;
   }
-  REQUIRE(xdmf.find("frame 000003") != std::string::npos);
-  kill(pid, SIGINT);
+  kill(pid, signal);
   int status = 0;
   waitpid(pid, &status, 0);
+  REQUIRE(xdmf.find("frame 000003") != std::string::npos);
+  return status;
+}
+
+}  // namespace
+
+TEST_CASE("Ctrl-C stops a run and keeps its frames", "[cli][output]") {
+  const fs::path dir = fresh_dir("interrupted");
+  const int status = run_and_signal(dir, SIGINT);
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 130);
   h5::Handle f = h5::open_file((dir / "run.h5").string());
@@ -131,6 +141,19 @@ TEST_CASE("Ctrl-C stops a run and keeps its frames", "[cli][output]") {
   CHECK(written >= 4);
   const std::size_t n = h5::read_uint16(h5::open_group(f, "particles"), "body").size();
   CHECK(readable_frames(dir / "run.h5", n) == written);
+}
+
+TEST_CASE("A killed run (SIGKILL, as in a crash) keeps the frames it flushed", "[cli][output]") {
+  const fs::path dir = fresh_dir("killed");
+  const int status = run_and_signal(dir, SIGKILL);
+  REQUIRE(WIFSIGNALED(status));
+  // The file opens; every frame counted at the last flush reads back whole.
+  h5::Handle f = h5::open_file((dir / "run.h5").string());
+  CHECK(h5::get_string_attribute(f, "status") == "running");
+  const long written = h5::get_long_attribute(f, "frames_written");
+  CHECK(written >= 4);
+  const std::size_t n = h5::read_uint16(h5::open_group(f, "particles"), "body").size();
+  CHECK(readable_frames(dir / "run.h5", n) >= written);
 }
 
 TEST_CASE("A numerically unstable run stops with exit code 3 and keeps its frames", "[cli][output]") {
