@@ -12,7 +12,8 @@ namespace bsmpm {
 
 // A top-level table that another part of the program owns (e.g. [render], validated by the
 // renderer): the loader hands it to `validate`, which must read every key it accepts and
-// call finish(). The solver itself never looks inside.
+// call finish(). The solver itself never looks inside; without a registered validator the
+// loader passes such a table over (the program always registers it).
 struct SceneExtension {
   std::string table;
   std::function<void(TableReader&)> validate;

@@ -62,6 +62,9 @@ class TableReader {
   // Keys of a table whose entries are all tables (e.g. [materials.water], [materials.steel]).
   std::vector<std::pair<std::string, TableReader>> named_tables();
 
+  // Marks a key as accounted for without reading it (a table another component validates).
+  void skip(std::string_view key) { used_.insert(std::string(key)); }
+
   // Throws on the first key no accessor used.
   void finish() const;
 

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <numeric>
 
+#include <Eigen/Cholesky>
+
 #include "core/error.hpp"
 
 namespace bsmpm {
@@ -52,8 +54,7 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
   }
   st_.schedules.resize(st_.bodies.size());
   if (settings_.smooth_fluid_volume) {
-    smoothing_mass_.assign(st_.grid.node_count(), 0.0);
-    smoothing_value_.assign(st_.grid.node_count(), 0.0);
+    smoothing_moments_.assign(kMoments * st_.grid.node_count(), 0.0);
     gradient_scratch_.resize(st_.particles.size());
   }
   st_.weights.resize(st_.particles.size());
@@ -395,26 +396,61 @@ void BsmpmSimulation<P>::update_particle_stress(double dt) {
   }
 }
 
-// J_I = sum_p m_p S_Ip J_p / sum_p m_p S_Ip, then J_p = sum_I S_Ip J_I: a mass-weighted
-// B-spline projection of the fluid's volume ratio that removes the particle-to-particle
-// pressure noise of weakly compressible MPM (optional; solver.smooth_fluid_volume).
+// Smoothing of the fluid's volume ratio through the grid (solver.smooth_fluid_volume):
+// at each control point a mass-weighted least-squares linear fit of the particles' J around
+// its Greville point, J ~ J_I + g_I . (x - xi_I), then J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)).
+// It removes the particle-to-particle pressure noise of weakly compressible MPM. A plain
+// mass average (Shepard) would take the value of the particles' centroid for the control
+// point's, which next to a wall or a free surface lies a fraction of a cell inside: the
+// fit reproduces linear J fields exactly, walls included. Where the particles around a
+// control point do not span a plane (a thin film), the fit falls back to the mass average.
 template <int P>
 void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
   const int ny = st_.grid.ny();
+  const Vec2 inv_h = st_.grid.cell_size().cwiseInverse();
   auto& ps = st_.particles;
+  auto greville = [&](int n) { return st_.grid.greville(n / ny, n % ny); };
+  // Moments per control point, with d = (x_p - xi_I) / h:
+  // sum m S, sum m S d (2), sum m S d d^T (3), sum m S J, sum m S J d (2).
   st_.schedules[body_index].for_each([&](std::uint32_t p) {
     const auto& w = st_.weights[p];
-    const double m = ps.mass[p], mJ = m * ps.J[p];
+    const double m = ps.mass[p], J = ps.J[p];
     for (int a = 0; a <= P; ++a) {
       const int row = (w.i0 + a) * ny + w.j0;
       for (int c = 0; c <= P; ++c) {
-        const double s = w.wx[a] * w.wy[c];
-        smoothing_mass_[row + c] += s * m;
-        smoothing_value_[row + c] += s * mJ;
+        const int n = row + c;
+        const double ms = m * w.wx[a] * w.wy[c];
+        const Vec2 d = (ps.x[p] - greville(n)).cwiseProduct(inv_h);
+        double* mom = &smoothing_moments_[kMoments * n];
+        mom[0] += ms;
+        mom[1] += ms * d.x();
+        mom[2] += ms * d.y();
+        mom[3] += ms * d.x() * d.x();
+        mom[4] += ms * d.x() * d.y();
+        mom[5] += ms * d.y() * d.y();
+        mom[6] += ms * J;
+        mom[7] += ms * J * d.x();
+        mom[8] += ms * J * d.y();
       }
     }
   });
   const Body& body = st_.bodies[body_index];
+  const NodeBox& b = st_.layers[body.layer].active;
+  // Solve each control point's 3x3 normal equations; the fit (J_I, g_I h) replaces its moments.
+  for_each_node(b, ny, [&](int n, int, int) {
+    double* mom = &smoothing_moments_[kMoments * n];
+    if (mom[0] <= 0.0) return;
+    Eigen::Matrix3d A;
+    A << mom[0], mom[1], mom[2], mom[1], mom[3], mom[4], mom[2], mom[4], mom[5];
+    const Eigen::Vector3d rhs(mom[6], mom[7], mom[8]);
+    Eigen::Vector3d fit(mom[6] / mom[0], 0.0, 0.0);
+    // Well-posed only when the particles spread in both directions around the point.
+    const double spread = A.bottomRightCorner<2, 2>().determinant() / (mom[0] * mom[0]);
+    if (spread > 1e-3) fit = A.ldlt().solve(rhs);
+    mom[0] = fit[0];
+    mom[1] = fit[1];
+    mom[2] = fit[2];
+  });
   const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
 #pragma omp parallel for schedule(static)
   for (long p = begin; p < end; ++p) {
@@ -422,15 +458,17 @@ void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
     double J = 0.0;
     for (int a = 0; a <= P; ++a) {
       const int row = (w.i0 + a) * ny + w.j0;
-      for (int c = 0; c <= P; ++c) J += w.wx[a] * w.wy[c] * smoothing_value_[row + c] / smoothing_mass_[row + c];
+      for (int c = 0; c <= P; ++c) {
+        const int n = row + c;
+        const double* fit = &smoothing_moments_[kMoments * n];
+        const Vec2 d = (ps.x[p] - greville(n)).cwiseProduct(inv_h);
+        J += w.wx[a] * w.wy[c] * (fit[0] + fit[1] * d.x() + fit[2] * d.y());
+      }
     }
     ps.J[p] = J;
   }
-  const NodeBox& b = st_.layers[body.layer].active;
-  for (int i = b.i0; i < b.i1; ++i) {
-    std::fill_n(smoothing_mass_.begin() + i * ny + b.j0, b.j1 - b.j0, 0.0);
-    std::fill_n(smoothing_value_.begin() + i * ny + b.j0, b.j1 - b.j0, 0.0);
-  }
+  for (int i = b.i0; i < b.i1; ++i)
+    std::fill_n(smoothing_moments_.begin() + kMoments * (i * ny + b.j0), kMoments * (b.j1 - b.j0), 0.0);
 }
 
 template <int P>

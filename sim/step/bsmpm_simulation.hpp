@@ -57,7 +57,8 @@ class BsmpmSimulation final : public Simulation {
   std::vector<std::unique_ptr<Effect<P>>> effects_;
   std::vector<Effect<P>*> force_hooks_, velocity_hooks_;
   std::vector<std::unique_ptr<Probe>> probes_;
-  std::vector<double> smoothing_mass_, smoothing_value_;  // only with smooth_fluid_volume
+  static constexpr int kMoments = 9;
+  std::vector<double> smoothing_moments_;  // per control point, only with smooth_fluid_volume
   std::vector<Mat2> gradient_scratch_;
   double max_signal_speed_ = 0.0;
   SimulationStats stats_;
