@@ -1,8 +1,12 @@
 // Helpers shared by the test suites: repository paths and running a scene in-process.
 #pragma once
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "scene/scene_builder.hpp"
@@ -14,6 +18,24 @@ namespace bsmpm::test {
 
 inline std::string source_path(const std::string& relative) { return std::string(BSMPM_SOURCE_DIR) + "/" + relative; }
 inline std::string scene_path(const std::string& name) { return source_path("scenes/" + name); }
+
+// An empty directory `name` in this test process's scratch space (under the system's temp
+// directory); the whole scratch space is removed when the process exits.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  namespace fs = std::filesystem;
+  struct Scratch {
+    fs::path root = fs::temp_directory_path() / ("bsmpm_test_" + std::to_string(::getpid()));
+    ~Scratch() {
+      std::error_code ignored;
+      fs::remove_all(root, ignored);
+    }
+  };
+  static const Scratch scratch;
+  const fs::path d = scratch.root / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
 
 // Loads scenes/NAME with overrides, builds and runs it to its end time.
 struct SceneRun {

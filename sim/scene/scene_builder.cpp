@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "contact/li_lian_2024_contact.hpp"
 #include "particles/seeding.hpp"
 #include "probes/front_probe.hpp"
 #include "probes/material_point.hpp"
 #include "probes/pressure_probe.hpp"
 #include "step/bsmpm_simulation.hpp"
-#include "contact/li_lian_2024_contact.hpp"
 #include "step/effects/clamped_nodes.hpp"
 #include "step/effects/gravity.hpp"
 #include "step/effects/local_damping.hpp"
@@ -19,9 +20,10 @@ namespace bsmpm {
 
 namespace {
 
-// Hydrostatic pressure of a fluid body at rest under gravity: p = rho0 |g| depth, the
-// depth measured from the body's highest point along -g. The volume ratio follows from the
-// equation of state, and the mass is that of the compressed column (m = rho0 V / J).
+// Fills the body's shape with particles. A fluid with initial_stress = "hydrostatic" starts
+// at rest under gravity: p = rho0 |g| depth, the depth measured from the body's highest point
+// along -g; J follows from the equation of state, and the mass is that of the compressed
+// water (m = rho0 V / J).
 void seed_body(const SceneDescription& scene, const BodyDescription& desc, BodyId id, Particles& ps,
                Body& body) {
   const Vec2 h = scene.actual_cell_size();

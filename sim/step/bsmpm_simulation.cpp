@@ -5,8 +5,6 @@
 #include <cstdio>
 #include <numeric>
 
-#include <Eigen/Cholesky>
-
 #include "core/error.hpp"
 
 namespace bsmpm {
@@ -55,6 +53,8 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
   st_.schedules.resize(st_.bodies.size());
   if (settings_.smooth_fluid_volume) {
     smoothing_moments_.assign(kMoments * st_.grid.node_count(), 0.0);
+    for (int i = 0; i < st_.grid.nx(); ++i) greville_x_.push_back(st_.grid.bx.greville(i));
+    for (int j = 0; j < st_.grid.ny(); ++j) greville_y_.push_back(st_.grid.by.greville(j));
     gradient_scratch_.resize(st_.particles.size());
   }
   st_.weights.resize(st_.particles.size());
@@ -407,62 +407,77 @@ void BsmpmSimulation<P>::update_particle_stress(double dt) {
 template <int P>
 void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
   const int ny = st_.grid.ny();
-  const Vec2 inv_h = st_.grid.cell_size().cwiseInverse();
+  const double ihx = 1.0 / st_.grid.cell_size().x(), ihy = 1.0 / st_.grid.cell_size().y();
+  const std::vector<double>& gx = greville_x_;
+  const std::vector<double>& gy = greville_y_;
   auto& ps = st_.particles;
-  auto greville = [&](int n) { return st_.grid.greville(n / ny, n % ny); };
   // Moments per control point, with d = (x_p - xi_I) / h:
   // sum m S, sum m S d (2), sum m S d d^T (3), sum m S J, sum m S J d (2).
   st_.schedules[body_index].for_each([&](std::uint32_t p) {
     const auto& w = st_.weights[p];
     const double m = ps.mass[p], J = ps.J[p];
     for (int a = 0; a <= P; ++a) {
-      const int row = (w.i0 + a) * ny + w.j0;
+      const int i = w.i0 + a;
+      const double dx = (ps.x[p].x() - gx[i]) * ihx;
       for (int c = 0; c <= P; ++c) {
-        const int n = row + c;
+        const int j = w.j0 + c;
+        const double dy = (ps.x[p].y() - gy[j]) * ihy;
         const double ms = m * w.wx[a] * w.wy[c];
-        const Vec2 d = (ps.x[p] - greville(n)).cwiseProduct(inv_h);
-        double* mom = &smoothing_moments_[kMoments * n];
+        double* mom = &smoothing_moments_[kMoments * (i * ny + j)];
         mom[0] += ms;
-        mom[1] += ms * d.x();
-        mom[2] += ms * d.y();
-        mom[3] += ms * d.x() * d.x();
-        mom[4] += ms * d.x() * d.y();
-        mom[5] += ms * d.y() * d.y();
+        mom[1] += ms * dx;
+        mom[2] += ms * dy;
+        mom[3] += ms * dx * dx;
+        mom[4] += ms * dx * dy;
+        mom[5] += ms * dy * dy;
         mom[6] += ms * J;
-        mom[7] += ms * J * d.x();
-        mom[8] += ms * J * d.y();
+        mom[7] += ms * J * dx;
+        mom[8] += ms * J * dy;
       }
     }
   });
   const Body& body = st_.bodies[body_index];
-  const NodeBox& b = st_.layers[body.layer].active;
-  // Solve each control point's 3x3 normal equations; the fit (J_I, g_I h) replaces its moments.
-  for_each_node(b, ny, [&](int n, int, int) {
-    double* mom = &smoothing_moments_[kMoments * n];
-    if (mom[0] <= 0.0) return;
-    Eigen::Matrix3d A;
-    A << mom[0], mom[1], mom[2], mom[1], mom[3], mom[4], mom[2], mom[4], mom[5];
-    const Eigen::Vector3d rhs(mom[6], mom[7], mom[8]);
-    Eigen::Vector3d fit(mom[6] / mom[0], 0.0, 0.0);
-    // Well-posed only when the particles spread in both directions around the point.
-    const double spread = A.bottomRightCorner<2, 2>().determinant() / (mom[0] * mom[0]);
-    if (spread > 1e-3) fit = A.ldlt().solve(rhs);
-    mom[0] = fit[0];
-    mom[1] = fit[1];
-    mom[2] = fit[2];
-  });
+  const NodeBox b = st_.layers[body.layer].active;
+  // Each control point's normal equations A (J_I, g_I h) = r, solved by cofactors; the fit
+  // replaces the first three moments.
+#pragma omp parallel for schedule(static)
+  for (int i = b.i0; i < b.i1; ++i)
+    for (int j = b.j0; j < b.j1; ++j) {
+      double* mom = &smoothing_moments_[kMoments * (i * ny + j)];
+      const double a00 = mom[0];
+      if (a00 <= 0.0) continue;
+      const double a01 = mom[1], a02 = mom[2], a11 = mom[3], a12 = mom[4], a22 = mom[5];
+      const double r0 = mom[6], r1 = mom[7], r2 = mom[8];
+      // Spread of the particles about their centroid (in cells^2): a thin film cannot
+      // carry a gradient across itself.
+      const double mx = a01 / a00, my = a02 / a00;
+      const double cxx = a11 / a00 - mx * mx, cxy = a12 / a00 - mx * my, cyy = a22 / a00 - my * my;
+      double fit0 = r0 / a00, fit1 = 0.0, fit2 = 0.0;
+      if (cxx * cyy - cxy * cxy > 1e-3) {
+        const double c00 = a11 * a22 - a12 * a12, c01 = a02 * a12 - a01 * a22, c02 = a01 * a12 - a02 * a11;
+        const double c11 = a00 * a22 - a02 * a02, c12 = a01 * a02 - a00 * a12, c22 = a00 * a11 - a01 * a01;
+        const double inv_det = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02);
+        fit0 = (c00 * r0 + c01 * r1 + c02 * r2) * inv_det;
+        fit1 = (c01 * r0 + c11 * r1 + c12 * r2) * inv_det;
+        fit2 = (c02 * r0 + c12 * r1 + c22 * r2) * inv_det;
+      }
+      mom[0] = fit0;
+      mom[1] = fit1;
+      mom[2] = fit2;
+    }
   const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
 #pragma omp parallel for schedule(static)
   for (long p = begin; p < end; ++p) {
     const auto& w = st_.weights[p];
     double J = 0.0;
     for (int a = 0; a <= P; ++a) {
-      const int row = (w.i0 + a) * ny + w.j0;
+      const int i = w.i0 + a;
+      const double dx = (ps.x[p].x() - gx[i]) * ihx;
       for (int c = 0; c <= P; ++c) {
-        const int n = row + c;
-        const double* fit = &smoothing_moments_[kMoments * n];
-        const Vec2 d = (ps.x[p] - greville(n)).cwiseProduct(inv_h);
-        J += w.wx[a] * w.wy[c] * (fit[0] + fit[1] * d.x() + fit[2] * d.y());
+        const int j = w.j0 + c;
+        const double dy = (ps.x[p].y() - gy[j]) * ihy;
+        const double* fit = &smoothing_moments_[kMoments * (i * ny + j)];
+        J += w.wx[a] * w.wy[c] * (fit[0] + fit[1] * dx + fit[2] * dy);
       }
     }
     ps.J[p] = J;

@@ -59,6 +59,7 @@ class BsmpmSimulation final : public Simulation {
   std::vector<std::unique_ptr<Probe>> probes_;
   static constexpr int kMoments = 9;
   std::vector<double> smoothing_moments_;  // per control point, only with smooth_fluid_volume
+  std::vector<double> greville_x_, greville_y_;
   std::vector<Mat2> gradient_scratch_;
   double max_signal_speed_ = 0.0;
   SimulationStats stats_;

@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "test_support.hpp"
 #include "unit/render/synthetic_run.hpp"
 
 using namespace bsmpm;
@@ -60,8 +61,7 @@ std::string read_text(const fs::path& p) {
 }  // namespace
 
 TEST_CASE("Rendered frames match the golden images", "[render][golden]") {
-  const fs::path dir = fs::temp_directory_path() / ("bsmpm_golden_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const fs::path dir = test::scratch_dir("golden");
   const fs::path golden_dir = BSMPM_GOLDEN_DIR;
   const bool update = std::getenv("BSMPM_UPDATE_GOLDEN") != nullptr;
   const std::string program = BSMPM_EXECUTABLE;

@@ -100,11 +100,7 @@ std::string scene_text(const BadCase& c) {
   return s;
 }
 
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("bsmpm_bad_scenes_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir() { return test::scratch_dir("bad_scenes"); }
 
 }  // namespace
 

@@ -19,12 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("bsmpm_run_test_" + std::to_string(::getpid())) / name;
-  fs::remove_all(d);
-  fs::create_directories(d.parent_path());
-  return d;
-}
+// A directory for one run: the run itself creates it.
+fs::path fresh_dir(const std::string& name) { return test::scratch_dir(name) / "run"; }
 
 int run_program(const std::string& args, const fs::path& log) {
   const std::string cmd = std::string(BSMPM_EXECUTABLE) + " " + args + " > " + log.string() + " 2>&1";

@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "image/image_compare.hpp"
 #include "image/png_file.hpp"
+#include "test_support.hpp"
 
 using namespace bsmpm;
 using namespace bsmpm::render;
@@ -30,9 +31,8 @@ Image gradient(int w, int h) {
 }
 
 fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("bsmpm_compare_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
+  static const fs::path dir = test::scratch_dir("compare");
+  return dir;
 }
 
 int run_compare(const std::string& args, std::string& output) {

@@ -11,6 +11,7 @@
 
 #include "image/png_file.hpp"
 #include "io/hdf5.hpp"
+#include "test_support.hpp"
 #include "unit/render/synthetic_run.hpp"
 
 using namespace bsmpm;
@@ -18,7 +19,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() { return fs::temp_directory_path() / ("bsmpm_render_cli_" + std::to_string(::getpid())); }
+fs::path scratch() {
+  static const fs::path root = test::scratch_dir("render_cli");
+  return root;
+}
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path d = scratch() / name;

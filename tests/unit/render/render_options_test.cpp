@@ -85,8 +85,7 @@ TEST_CASE("Bad [render] values are errors naming file:line:column and the key", 
 }
 
 TEST_CASE("bsmpm check validates a scene's [render] table", "[render][options][cli]") {
-  const fs::path dir = fs::temp_directory_path() / ("bsmpm_options_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = test::scratch_dir("options_check");
   std::ifstream in(test::scene_path("hydrostatic_tank.toml"));
   const std::string base((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   auto check = [&](const std::string& render_table, std::string& err) {
@@ -110,7 +109,7 @@ TEST_CASE("bsmpm check validates a scene's [render] table", "[render][options][c
 }
 
 TEST_CASE("The run's [render] table applies and the command line overrides it", "[render][options]") {
-  const fs::path dir = fs::temp_directory_path() / ("bsmpm_options_run_" + std::to_string(::getpid()));
+  const fs::path dir = test::scratch_dir("options_run");
   const std::string path = test::write_dam_break_run(dir, true, 3, kGoodTable);
   const RunReader run(path);
 
@@ -145,7 +144,7 @@ TEST_CASE("The run's [render] table applies and the command line overrides it", 
 }
 
 TEST_CASE("Without a given range, a first pass over the run finds it", "[render][options]") {
-  const fs::path dir = fs::temp_directory_path() / ("bsmpm_options_scan_" + std::to_string(::getpid()));
+  const fs::path dir = test::scratch_dir("options_scan");
   const std::string path = test::write_dam_break_run(dir, true, 4);
   const RunReader run(path);
   const RunFigures figures(run, RenderOptions{});

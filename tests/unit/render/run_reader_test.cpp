@@ -9,18 +9,14 @@
 #include "core/error.hpp"
 #include "io/hdf5.hpp"
 #include "io/run_reader.hpp"
+#include "test_support.hpp"
 #include "unit/render/synthetic_run.hpp"
 
 using namespace bsmpm;
 namespace fs = std::filesystem;
 
 namespace {
-fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("bsmpm_reader_test_" + std::to_string(::getpid())) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return test::scratch_dir("reader_" + name); }
 }  // namespace
 
 TEST_CASE("RunReader reads frames, bodies, grid and reference scales as written", "[render][reader]") {
