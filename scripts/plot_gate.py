@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Elastic gate runs against the published results (paper Figs. 11, 12, 14).
 
-usage: plot_gate.py RUN_DIR [RUN_DIR ...] [--labels A B ...] [--output FILE.png]
+usage: plot_gate.py RUN_DIR [RUN_DIR ...] [--labels A B ...] [--output FILE.png] [--window S]
 
 Top: x-displacement of the gate's top-left corner (probe `tip`) of each run against the
 published curves in tests/data/walhorn_elastic_gate/. Bottom: P* on the gate's left face
-(probes P_h20, P_h40, P_h60) of the first run. Prints each run's peak and its time.
+(probes P_h20, P_h40, P_h60) of the first run, as a centred moving average over --window
+seconds (0: every step). Prints each run's peak and its time.
 """
 import argparse
 import csv
@@ -17,6 +18,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+
+from plot_probes import moving_average
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(ROOT, "tests/data/walhorn_elastic_gate")
@@ -42,6 +45,7 @@ def main():
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--labels", nargs="*")
     ap.add_argument("--output", default="gate.png")
+    ap.add_argument("--window", type=float, default=0.0)
     args = ap.parse_args()
     labels = args.labels or [os.path.basename(os.path.normpath(r)) for r in args.runs]
 
@@ -61,14 +65,16 @@ def main():
     ax.set_xlabel("t [s]")
     ax.set_ylabel("x-displacement of the top-left corner [mm]")
     ax.set_xlim(0, 0.5)
+    ax.set_ylim(bottom=-5)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
 
     for path in sorted(glob.glob(os.path.join(args.runs[0], "P_h*.csv"))):
         header, d = read_csv(path)
-        bx.plot(d[:, 0], d[:, header.index("P*")], lw=0.7, label=os.path.basename(path)[:-4])
+        t = d[:, header.index("t")]
+        bx.plot(t, moving_average(t, d[:, header.index("P*")], args.window), lw=0.8, label=os.path.basename(path)[:-4])
     bx.set_xlabel("t [s]")
-    bx.set_ylabel("P* = P / (rho g H)")
+    bx.set_ylabel("P* = P / (rho g H)" + (f", moving average {args.window * 1e3:g} ms" if args.window > 0 else ""))
     bx.set_xlim(0, 0.5)
     bx.grid(alpha=0.3)
     bx.legend(fontsize=8)

@@ -6,8 +6,8 @@ usage: plot_probes.py RUN_DIR [--experiment lobovsky_h300] [--output FILE.png]
 
 The experimental curves come from tests/data/ (Lobovsky et al. 2014, one run at 20 kHz),
 with the 2.5-97.5 % band of the peak over 100 repeats (their Table 2) drawn as a bar.
---window applies a centred moving average of that width in T* to the simulation only
-(0 = raw samples, the default).
+--window draws a centred moving average of that width in T* of the simulation over its
+raw samples (drawn faint); 0, the default, draws the raw samples only.
 """
 import argparse
 import csv
@@ -83,8 +83,12 @@ def main():
             if band:
                 ax.errorbar([e[np.argmax(e[:, 1]), 0]], [band[0]], yerr=[[band[0] - band[1]], [band[2] - band[0]]],
                             fmt="s", color="k", ms=4, capsize=3, label="peak median, 2.5-97.5 %")
-        label = "bsmpm" + (f" (moving average {args.window:g} T*)" if args.window > 0 else "")
-        ax.plot(T, moving_average(T, P, args.window), color="tab:blue", lw=0.9, label=label)
+        if args.window > 0:  # raw samples underneath, faint
+            ax.plot(T, P, color="tab:blue", lw=0.4, alpha=0.3, label="bsmpm, every step")
+            ax.plot(T, moving_average(T, P, args.window), color="tab:blue", lw=1.0,
+                    label=f"bsmpm, moving average {args.window:g} T*")
+        else:
+            ax.plot(T, P, color="tab:blue", lw=0.9, label="bsmpm")
         ax.set_ylabel("P*")
         ax.set_title(name, fontsize=10)
         ax.set_xlim(0, max(T.max(), 6.0))

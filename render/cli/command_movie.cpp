@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
@@ -86,19 +85,13 @@ int command_movie(const std::vector<std::string>& argv) {
     cli_options.slowmo = s;
   }
 
-  std::optional<RunReader> run;
-  try {
-    run.emplace(args.positional()[0]);
-  } catch (const IoError& e) {
-    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
-    return kBadInput;
-  }
+  const RunReader run = open_input_run(args);
   render::FigureRenderer renderer(font_path_from(args));
-  const render::RunFigures figures(*run, cli_options);
-  if (run->frames().empty()) throw UsageError(run->path() + ": the run has no frames yet");
+  const render::RunFigures figures(run, cli_options);
+  if (run.frames().empty()) throw UsageError(run.path() + ": the run has no frames yet");
   const int fps = figures.options().fps.value_or(render::kDefaultFps);
   const double slowmo = figures.options().slowmo.value_or(render::kDefaultSlowmo);
-  const std::vector<int> schedule = movie_schedule(*run, fps, slowmo);
+  const std::vector<int> schedule = movie_schedule(run, fps, slowmo);
 
   render::MovieSettings settings;
   settings.fps = fps;
@@ -134,7 +127,7 @@ int command_movie(const std::vector<std::string>& argv) {
       ++renders;
     }
     encoder.add_frame(image);
-    progress.update(static_cast<long>(k + 1), figures.time_label(run->frames()[schedule[k]]));
+    progress.update(static_cast<long>(k + 1), figures.time_label(run.frames()[schedule[k]]));
   }
   encoder.finish();
   progress.finish();

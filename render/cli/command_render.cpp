@@ -105,16 +105,10 @@ int command_render(const std::vector<std::string>& argv) {
 
   // Everything is checked before anything is written: a bad run file, field or frame list
   // leaves no output behind.
-  std::optional<RunReader> run;
-  try {
-    run.emplace(args.positional()[0]);
-  } catch (const IoError& e) {
-    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
-    return kBadInput;
-  }
+  const RunReader run = open_input_run(args);
   render::FigureRenderer renderer(font_path_from(args));
-  const render::RunFigures figures(*run, cli_options);
-  const std::vector<int> frames = render::select_frames(*run, selection);
+  const render::RunFigures figures(run, cli_options);
+  const std::vector<int> frames = render::select_frames(run, selection);
   if (!layout && is_png_path(out) && frames.size() != 1)
     throw UsageError("--out " + out + " holds one image but " + std::to_string(frames.size()) +
                      " frames are selected: pick one (--frames, --times) or use --out DIR or --layout");

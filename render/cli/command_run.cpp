@@ -127,6 +127,16 @@ int command_run(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "bsmpm: error: %s\nbsmpm: the %d frames written before the failure are in %s\n", e.what(),
                  writer->frames_written(), writer->h5_path().c_str());
     return kUnstable;
+  } catch (const std::exception& e) {
+    // A failed write (disk full, ...): the file says so instead of "running"; the frames
+    // flushed before it stay readable.
+    if (tty && !args.flag("--quiet")) std::fputc('\n', stderr);
+    try {
+      writer->finish(std::string("failed: ") + e.what(), *sim, 0.0);
+    } catch (const std::exception&) {
+      // The file itself is what failed; main reports the first error.
+    }
+    throw;
   }
   if (tty && !args.flag("--quiet")) std::fputc('\n', stderr);
   writer->finish(outcome.interrupted ? "interrupted" : "completed", *sim, outcome.last_dt);

@@ -120,6 +120,14 @@ render::FrameSelection frame_selection_from(const Arguments& args) {
   return s;
 }
 
+RunReader open_input_run(const Arguments& args) {
+  try {
+    return RunReader(args.positional()[0]);
+  } catch (const IoError& e) {
+    throw UsageError(e.what());
+  }
+}
+
 void check_output_file(const std::string& path) {
   const fs::path p(path);
   if (fs::is_directory(p)) throw UsageError("--out " + path + " is a directory");

@@ -39,14 +39,13 @@ struct Grid {
   Vec2 origin() const { return {bx.origin(), by.origin()}; }
   Vec2 extent_max() const { return {bx.end(), by.end()}; }
   Vec2 cell_size() const { return {bx.cell_size(), by.cell_size()}; }
-  NodeBox all_nodes() const { return {0, nx(), 0, ny()}; }
 };
 
 // One velocity field on the grid: a body, or a group of bodies sharing a field.
 // All arrays are zero between steps outside the nodes the step touched.
 struct GridLayer {
   std::vector<double> mass;
-  std::vector<Vec2> momentum;        // eq. 6 numerator; becomes the velocity v_I^k
+  std::vector<Vec2> momentum;        // eq. 6 numerator (v_I^k itself goes to velocity_change)
   std::vector<Vec2> force;           // eqs. 7-8
   std::vector<Vec2> velocity;        // v_I^{k+1} after all constraints (eq. 10)
   std::vector<Vec2> velocity_change; // v_I^{k+1} - v_I^k, the FLIP increment of eq. 11

@@ -171,14 +171,8 @@ std::vector<double> get_doubles_attribute(hid_t obj, const std::string& name) {
 void write_dataset(hid_t parent, const std::string& name, const double* data, std::size_t rows, std::size_t cols) {
   write_typed(parent, name, data, rows, cols, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
 }
-void write_dataset(hid_t parent, const std::string& name, const float* data, std::size_t rows, std::size_t cols) {
-  write_typed(parent, name, data, rows, cols, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT);
-}
 void write_dataset(hid_t parent, const std::string& name, const std::uint16_t* data, std::size_t rows) {
   write_typed(parent, name, data, rows, 1, H5T_STD_U16LE, H5T_NATIVE_UINT16);
-}
-void write_dataset(hid_t parent, const std::string& name, const std::uint32_t* data, std::size_t rows) {
-  write_typed(parent, name, data, rows, 1, H5T_STD_U32LE, H5T_NATIVE_UINT32);
 }
 
 std::vector<std::size_t> dataset_shape(hid_t parent, const std::string& name) {

@@ -49,9 +49,7 @@ std::vector<double> get_doubles_attribute(hid_t obj, const std::string& name);
 
 // Row-major datasets of `rows` x `cols` (cols = 1 writes a 1-D dataset).
 void write_dataset(hid_t parent, const std::string& name, const double* data, std::size_t rows, std::size_t cols);
-void write_dataset(hid_t parent, const std::string& name, const float* data, std::size_t rows, std::size_t cols);
 void write_dataset(hid_t parent, const std::string& name, const std::uint16_t* data, std::size_t rows);
-void write_dataset(hid_t parent, const std::string& name, const std::uint32_t* data, std::size_t rows);
 std::vector<std::size_t> dataset_shape(hid_t parent, const std::string& name);
 std::vector<double> read_doubles(hid_t parent, const std::string& name);  // any numeric type
 std::vector<std::uint16_t> read_uint16(hid_t parent, const std::string& name);

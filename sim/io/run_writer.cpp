@@ -113,7 +113,7 @@ RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, co
       const std::string csv = directory_ + "/" + probe->name() + ".csv";
       std::FILE* f = std::fopen(csv.c_str(), "w");
       if (!f) throw IoError(csv + ": cannot create");
-      probe_csv_.push_back(f);
+      probe_csv_.emplace_back(f);
       std::fprintf(f, "# %s\n", probe->describe().c_str());
       for (std::size_t c = 0; c < cols.size(); ++c) std::fprintf(f, "%s%s", c ? "," : "", cols[c].c_str());
       std::fprintf(f, "\n");
@@ -121,10 +121,6 @@ RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, co
     }
   }
   H5Fflush(file_, H5F_SCOPE_GLOBAL);
-}
-
-RunWriter::~RunWriter() {
-  for (std::FILE* f : probe_csv_) std::fclose(f);
 }
 
 void RunWriter::flush_probes(const Simulation& sim) {
@@ -137,10 +133,10 @@ void RunWriter::flush_probes(const Simulation& sim) {
     const std::size_t cols = probe.columns().size();
     for (std::size_t r = done; r < total; ++r) {
       const double* row = probe.row(r);
-      for (std::size_t c = 0; c < cols; ++c) std::fprintf(probe_csv_[k], "%s%.9g", c ? "," : "", row[c]);
-      std::fprintf(probe_csv_[k], "\n");
+      for (std::size_t c = 0; c < cols; ++c) std::fprintf(probe_csv_[k].get(), "%s%.9g", c ? "," : "", row[c]);
+      std::fprintf(probe_csv_[k].get(), "\n");
     }
-    std::fflush(probe_csv_[k]);
+    std::fflush(probe_csv_[k].get());
     probe_rows_done_[k] = total;
   }
 }

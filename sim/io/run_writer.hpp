@@ -29,7 +29,6 @@ class RunWriter {
  public:
   // Creates DIR/run.h5, DIR/run.xdmf and DIR/<probe>.csv; DIR must exist.
   RunWriter(const std::string& directory, const RunProvenance& provenance, const Simulation& sim);
-  ~RunWriter();
   RunWriter(const RunWriter&) = delete;
   RunWriter& operator=(const RunWriter&) = delete;
 
@@ -48,7 +47,10 @@ class RunWriter {
   std::string directory_, h5_path_, xdmf_path_;
   h5::Handle file_, frames_;
   std::vector<h5::RowAppender> probe_sets_;
-  std::vector<std::FILE*> probe_csv_;
+  struct CloseFile {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+  };
+  std::vector<std::unique_ptr<std::FILE, CloseFile>> probe_csv_;  // closed even if the constructor throws
   std::vector<std::size_t> probe_rows_done_;
   std::vector<double> frame_times_;
   std::vector<std::string> frame_names_;

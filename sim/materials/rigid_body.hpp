@@ -7,7 +7,7 @@
 namespace bsmpm {
 
 struct RigidBody {
-  double density = 1000.0;  // only weights the mass-gradient normals
+  double density = 1000.0;  // mass of its particles on its own grid layer; the contact treats it as infinite
   Vec2 velocity = Vec2::Zero();
 };
 

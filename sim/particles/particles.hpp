@@ -1,5 +1,5 @@
 // Material points as structure-of-arrays. Each body owns one contiguous index range;
-// within a range particles are kept sorted by cell (see particle_sort.hpp).
+// within a range particles are kept sorted by cell (BsmpmSimulation::sort_particles_by_cell).
 #pragma once
 
 #include <cstddef>

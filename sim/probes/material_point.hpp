@@ -19,7 +19,6 @@ class MaterialPoint {
   MaterialPoint(const Particles& particles, const Body& body, const Vec2& X);
 
   const Vec2& reference() const { return X_; }
-  std::uint32_t particle_id() const { return id_; }
   Vec2 position(const ProbeContext& ctx) const;
   // Current direction of a material normal N: F^{-T} N, normalised (Nanson's formula).
   Vec2 normal(const ProbeContext& ctx, const Vec2& N) const;

@@ -114,14 +114,6 @@ void assign_layers(const SceneDescription& scene, StepState<P>& st) {
     if (layer_of_root[r] < 0) layer_of_root[r] = layers++;
     st.bodies[b].layer = layer_of_root[r];
   }
-  for (std::size_t b = 0; b < n; ++b) {
-    if (!is_rigid(st.bodies[b].material)) continue;
-    bool paired = false;
-    for (const auto& c : scene.contacts) paired = paired || c.body_a == int(b) || c.body_b == int(b);
-    if (!paired)
-      throw SceneError(scene.bodies[b].where, "bodies[" + std::to_string(b) + "].material",
-                       "rigid body \"" + st.bodies[b].name + "\" acts only through contact: add a [[contacts]] entry for it");
-  }
   st.layers.resize(layers);
   for (const auto& c : scene.contacts)
     if (st.bodies[c.body_a].layer != st.bodies[c.body_b].layer) {

@@ -1,5 +1,6 @@
 // A scene as plain, validated data: what the TOML file says, with defaults filled in and
-// every value checked. Building the simulation from it (scene_builder) cannot fail on input.
+// every value checked. Building the simulation from it (scene_builder) fails on input only
+// where seeding decides: a shape too small to hold a particle at the grid's resolution.
 #pragma once
 
 #include <array>

@@ -105,11 +105,29 @@ Rectangle read_rectangle(TableReader& t) {
   return r;
 }
 
-// A clamp region may be a segment or a point (max == min along an axis).
-Rectangle read_region(TableReader& t) {
+// A clamp region may be a segment or a point (max == min along an axis); it must lie in the
+// domain and touch its body (a region beside the body would clamp nothing, or another body).
+Rectangle read_region(TableReader& t, const Shape& body, const SceneDescription& s) {
   Rectangle r{t.vec2("min"), t.vec2("max")};
   if (!(r.max.x() >= r.min.x() && r.max.y() >= r.min.y())) t.fail("max", "must not be below min in x or y");
+  const double tol = 1e-9 * (s.domain_max - s.domain_min).norm();
+  if ((r.min.array() < s.domain_min.array() - tol).any() || (r.max.array() > s.domain_max.array() + tol).any())
+    t.fail("min", "the region extends outside the domain");
+  const Rectangle box = bounding_box(body);
+  if ((r.max.array() < box.min.array() - tol).any() || (r.min.array() > box.max.array() + tol).any())
+    t.fail("min", "the region does not touch its body's shape");
   return r;
+}
+
+// A point that names a place on body `b` (a tracked material point, a pressure sensor): it
+// must lie within one grid cell of the body's bounding box.
+Vec2 read_point_on_body(TableReader& t, int b, const SceneDescription& s) {
+  const Vec2 x = t.vec2("point");
+  const Rectangle box = bounding_box(s.bodies[b].shape);
+  const Vec2 h = s.actual_cell_size();
+  if ((x.array() < box.min.array() - h.array()).any() || (x.array() > box.max.array() + h.array()).any())
+    t.fail("point", "lies more than a grid cell away from body \"" + s.bodies[b].name + "\"");
+  return x;
 }
 
 Shape read_shape(TableReader t, const SceneDescription& s) {
@@ -147,13 +165,18 @@ void read_bodies(TableReader& root, SceneDescription& s, const std::map<std::str
     if (it == materials.end()) t.fail("material", "no material \"" + b.material_name + "\" in [materials]");
     b.material = it->second;
     b.shape = read_shape(t.table("shape"), s);
+    if (is_rigid(b.material) && t.has("velocity"))
+      t.fail("velocity", "a rigid body moves at its material's velocity: set [materials." + b.material_name +
+                             "].velocity");
     b.velocity = t.vec2_or("velocity", Vec2::Zero());
     const std::string stress = t.choice_or("initial_stress", "none", {"none", "hydrostatic"});
     b.initial_stress = stress == "hydrostatic" ? InitialStress::kHydrostatic : InitialStress::kNone;
     if (b.initial_stress == InitialStress::kHydrostatic && !is_fluid(b.material))
       t.fail("initial_stress", "\"hydrostatic\" applies to fluid bodies only");
+    if (b.initial_stress == InitialStress::kHydrostatic && !(s.gravity > 0.0))
+      t.fail("initial_stress", "\"hydrostatic\" needs gravity (gravity.g > 0)");
     for (auto& c : t.tables("clamp")) {
-      b.clamps.push_back(read_region(c));
+      b.clamps.push_back(read_region(c, b.shape, s));
       c.finish();
     }
     if (!b.clamps.empty() && is_rigid(b.material)) t.fail("clamp", "a rigid body's motion is prescribed already");
@@ -162,11 +185,14 @@ void read_bodies(TableReader& root, SceneDescription& s, const std::map<std::str
   }
 }
 
-int body_index(TableReader& t, std::string_view key, const SceneDescription& s) {
-  const std::string name = t.string(key);
+int find_body(TableReader& t, std::string_view key, const std::string& name, const SceneDescription& s) {
   for (std::size_t i = 0; i < s.bodies.size(); ++i)
     if (s.bodies[i].name == name) return static_cast<int>(i);
   t.fail(key, "no body named \"" + name + "\"");
+}
+
+int body_index(TableReader& t, std::string_view key, const SceneDescription& s) {
+  return find_body(t, key, t.string(key), s);
 }
 
 void read_probes(TableReader& root, SceneDescription& s) {
@@ -187,7 +213,7 @@ void read_probes(TableReader& root, SceneDescription& s) {
     } else if (type == "material_point") {
       p.kind = ProbeDescription::Kind::kMaterialPoint;
       p.body = body_index(t, "body", s);
-      p.point = t.vec2("point");
+      p.point = read_point_on_body(t, p.body, s);
     } else {
       p.size = t.number_or("size", 0.008, Range::positive());
       if (t.has("depth")) p.depth = t.number("depth", Range::positive());
@@ -202,7 +228,7 @@ void read_probes(TableReader& root, SceneDescription& s) {
       } else {
         p.kind = ProbeDescription::Kind::kSurfacePressure;
         p.body = body_index(t, "body", s);
-        p.point = t.vec2("point");
+        p.point = read_point_on_body(t, p.body, s);
         p.normal = t.vec2("normal");
         if (p.normal.norm() < 1e-12) t.fail("normal", "must be a non-zero vector");
       }
@@ -219,12 +245,7 @@ void read_contacts(TableReader& root, SceneDescription& s) {
     {
       auto pair = t.string_pair("bodies");
       int ids[2];
-      for (int k = 0; k < 2; ++k) {
-        ids[k] = -1;
-        for (std::size_t i = 0; i < s.bodies.size(); ++i)
-          if (s.bodies[i].name == pair[k]) ids[k] = static_cast<int>(i);
-        if (ids[k] < 0) t.fail("bodies", "no body named \"" + pair[k] + "\"");
-      }
+      for (int k = 0; k < 2; ++k) ids[k] = find_body(t, "bodies", pair[k], s);
       if (ids[0] == ids[1]) t.fail("bodies", "a contact needs two different bodies");
       c.body_a = ids[0];
       c.body_b = ids[1];
@@ -241,6 +262,14 @@ void read_contacts(TableReader& root, SceneDescription& s) {
         t.fail("bodies", "this pair already has a contact");
     t.finish();
     s.contacts.push_back(c);
+  }
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    if (!is_rigid(s.bodies[b].material)) continue;
+    bool paired = false;
+    for (const auto& c : s.contacts) paired = paired || c.body_a == int(b) || c.body_b == int(b);
+    if (!paired)
+      throw SceneError(s.bodies[b].where, "bodies[" + std::to_string(b) + "].material",
+                       "rigid body \"" + s.bodies[b].name + "\" acts only through contact: add a [[contacts]] entry for it");
   }
 }
 

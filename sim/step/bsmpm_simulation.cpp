@@ -61,9 +61,14 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
   for (auto& layer : st_.layers) layer.resize(st_.grid.node_count());
   st_.index_of_id.resize(st_.particles.size());
   for (std::size_t p = 0; p < st_.particles.size(); ++p) st_.index_of_id[st_.particles.id[p]] = p;
-  double lightest = std::numeric_limits<double>::infinity();
-  for (double m : st_.particles.mass) lightest = std::min(lightest, m);
-  st_.mass_cutoff = settings_.mass_cutoff_ratio * lightest;
+  // The cut-off scales with the lightest deformable particle: a rigid body's density is a
+  // free parameter (it is infinitely heavy in the contact) and must not move the cut-off.
+  double lightest = std::numeric_limits<double>::infinity(), lightest_rigid = lightest;
+  for (const Body& b : st_.bodies) {
+    double& bound = std::holds_alternative<RigidBody>(b.material) ? lightest_rigid : lightest;
+    for (std::size_t p = b.begin; p < b.end; ++p) bound = std::min(bound, st_.particles.mass[p]);
+  }
+  st_.mass_cutoff = settings_.mass_cutoff_ratio * (std::isfinite(lightest) ? lightest : lightest_rigid);
   for (const Body& b : st_.bodies)
     for (std::size_t p = b.begin; p < b.end; ++p)
       max_signal_speed_ = std::max(
@@ -384,7 +389,9 @@ void BsmpmSimulation<P>::update_particle_stress(double dt) {
   max_signal_speed_ = speed;
   if (invalid) {
     for (std::size_t p = 0; p < ps.size(); ++p) {
-      if (ps.J[p] > 0.0 && std::isfinite(ps.pressure[p]) && ps.v[p].allFinite() && ps.x[p].allFinite()) continue;
+      if (ps.J[p] > 0.0 && std::isfinite(ps.pressure[p]) && ps.stress[p].allFinite() && ps.v[p].allFinite() &&
+          ps.x[p].allFinite())
+        continue;
       char msg[320];
       std::snprintf(msg, sizeof msg,
                     "numerical instability at step %ld (t = %.6g s): particle %u of body '%s' at (%.4g, "
@@ -393,6 +400,8 @@ void BsmpmSimulation<P>::update_particle_stress(double dt) {
                     ps.x[p].y(), ps.J[p], ps.pressure[p], ps.v[p].norm());
       throw NumericalError(msg);
     }
+    throw NumericalError("numerical instability at step " + std::to_string(st_.step + 1) +
+                         ": a non-finite state; reduce the time step (time.cfl or time.dt)");
   }
 }
 
@@ -404,6 +413,8 @@ void BsmpmSimulation<P>::update_particle_stress(double dt) {
 // point's, which next to a wall or a free surface lies a fraction of a cell inside: the
 // fit reproduces linear J fields exactly, walls included. Where the particles around a
 // control point do not span a plane (a thin film), the fit falls back to the mass average.
+// The offsets x_p - xi_I use the particles' new positions x^{k+1}, where their J now sits;
+// the step's weights S_Ip(x^k) only localise the fit, which stays exact for linear fields.
 template <int P>
 void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
   const int ny = st_.grid.ny();

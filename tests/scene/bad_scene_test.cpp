@@ -82,6 +82,26 @@ const std::vector<BadCase> kCases = {
      {{11, "type = \"elastic\""}, {13, "youngs_modulus = 1e6"}, {14, ""},
       {18, "shape = { type = \"rectangle\", min = [0.0, 0.0], max = [0.1, 0.1] }\ninitial_stress = \"hydrostatic\""}},
      19, 18, "bodies[0].initial_stress", "applies to fluid bodies only"},
+    {"hydrostatic without gravity",
+     {{18, "shape = { type = \"rectangle\", min = [0.0, 0.0], max = [0.1, 0.1] }\ninitial_stress = \"hydrostatic\""},
+      {0, "[gravity]\ng = 0.0"}},
+     19, 18, "bodies[0].initial_stress", "needs gravity"},
+    {"velocity of a rigid body",
+     {{0, "[materials.steel]\ntype = \"rigid\"\n[[bodies]]\nname = \"wall\"\nmaterial = \"steel\"\n"
+          "shape = { type = \"rectangle\", min = [0.3, 0.0], max = [0.35, 0.1] }\nvelocity = [1.0, 0.0]"}},
+     30, 12, "bodies[1].velocity", "moves at its material's velocity"},
+    {"rigid body without contact",
+     {{0, "[materials.steel]\ntype = \"rigid\"\n[[bodies]]\nname = \"wall\"\nmaterial = \"steel\"\n"
+          "shape = { type = \"rectangle\", min = [0.3, 0.0], max = [0.35, 0.1] }"}},
+     26, 0, "bodies[1].material", "acts only through contact"},
+    {"clamp away from its body",
+     {{11, "type = \"elastic\""}, {13, "youngs_modulus = 1e6"}, {14, ""},
+      {18, "shape = { type = \"rectangle\", min = [0.0, 0.0], max = [0.1, 0.1] }\n"
+           "clamp = [{ min = [0.3, 0.0], max = [0.35, 0.0] }]"}},
+     19, 0, "bodies[0].clamp[0].min", "does not touch its body"},
+    {"material point off its body",
+     {{0, "[[probes]]\nname = \"tip\"\ntype = \"material_point\"\nbody = \"water\"\npoint = [0.3, 0.15]"}},
+     28, 9, "probes[1].point", "more than a grid cell away"},
 };
 
 std::string scene_text(const BadCase& c) {
