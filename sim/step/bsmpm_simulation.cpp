@@ -357,7 +357,7 @@ void BsmpmSimulation<P>::update_particle_stress(double dt) {
                 const double pressure = mat.pressure(J);
                 ps.pressure[p] = pressure;
                 ps.stress[p] = mat.template stress<decltype(viscous)::value>(pressure, L);
-                body_speed = std::max(body_speed, mat.sound_speed(J) + ps.v[p].norm());
+                body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
                 body_invalid = body_invalid || !(J > 0.0) || !std::isfinite(pressure) || !ps.v[p].allFinite();
               }
             };
@@ -375,11 +375,11 @@ void BsmpmSimulation<P>::update_particle_stress(double dt) {
               const Mat2 sigma = mat.stress(F);
               ps.stress[p] = sigma;
               ps.pressure[p] = -0.5 * sigma.trace();
-              body_speed = std::max(body_speed, mat.wave_speed(J) + ps.v[p].norm());
+              body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
               body_invalid = body_invalid || !(J > 0.0) || !sigma.allFinite() || !ps.v[p].allFinite();
             }
           } else {
-            body_speed = mat.velocity.norm();
+            body_speed = SignalSpeed{1.0, 0.0}(mat);
           }
         },
         body.material);
