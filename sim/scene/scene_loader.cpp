@@ -105,14 +105,21 @@ Rectangle read_rectangle(TableReader& t) {
   return r;
 }
 
+// Round-off allowance for geometry compared with the domain's edges.
+double domain_tolerance(const SceneDescription& s) { return 1e-9 * (s.domain_max - s.domain_min).norm(); }
+
+bool outside_domain(const Rectangle& r, const SceneDescription& s) {
+  const double tol = domain_tolerance(s);
+  return (r.min.array() < s.domain_min.array() - tol).any() || (r.max.array() > s.domain_max.array() + tol).any();
+}
+
 // A clamp region may be a segment or a point (max == min along an axis); it must lie in the
 // domain and touch its body (a region beside the body would clamp nothing, or another body).
 Rectangle read_region(TableReader& t, const Shape& body, const SceneDescription& s) {
   Rectangle r{t.vec2("min"), t.vec2("max")};
   if (!(r.max.x() >= r.min.x() && r.max.y() >= r.min.y())) t.fail("max", "must not be below min in x or y");
-  const double tol = 1e-9 * (s.domain_max - s.domain_min).norm();
-  if ((r.min.array() < s.domain_min.array() - tol).any() || (r.max.array() > s.domain_max.array() + tol).any())
-    t.fail("min", "the region extends outside the domain");
+  if (outside_domain(r, s)) t.fail("min", "the region extends outside the domain");
+  const double tol = domain_tolerance(s);
   const Rectangle box = bounding_box(body);
   if ((r.max.array() < box.min.array() - tol).any() || (r.min.array() > box.max.array() + tol).any())
     t.fail("min", "the region does not touch its body's shape");
@@ -143,10 +150,7 @@ Shape read_shape(TableReader t, const SceneDescription& s) {
     shape = p;
     if (area(shape) <= 0.0) t.fail("points", "polygon has zero area");
   }
-  const Rectangle box = bounding_box(shape);
-  const double tol = 1e-9 * (s.domain_max - s.domain_min).norm();
-  if ((box.min.array() < s.domain_min.array() - tol).any() || (box.max.array() > s.domain_max.array() + tol).any())
-    t.fail("type", "shape extends outside the domain");
+  if (outside_domain(bounding_box(shape), s)) t.fail("type", "shape extends outside the domain");
   t.finish();
   return shape;
 }
