@@ -4,14 +4,14 @@
 
 #include <cstdio>
 
+#include "core/format.hpp"
+
 namespace bsmpm::cli {
 
 std::string format_duration(double s) {
-  char buf[32];
-  if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", int(s / 3600), int(s / 60) % 60);
-  else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s / 60), int(s) % 60);
-  else std::snprintf(buf, sizeof buf, "%.0fs", s);
-  return buf;
+  if (s >= 3600) return format("%dh%02dm", int(s / 3600), int(s / 60) % 60);
+  if (s >= 60) return format("%dm%02ds", int(s / 60), int(s) % 60);
+  return format("%.0fs", s);
 }
 
 Progress::Progress(std::string what, long total, bool quiet)

@@ -1,20 +1,16 @@
 #include "figure/frame_selection.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace bsmpm::render {
 
 namespace {
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
-}
+std::string number(double x) { return format("%g", x); }
 
 int nearest_frame(const RunReader& run, double t, const std::string& asked) {
   const auto& frames = run.frames();

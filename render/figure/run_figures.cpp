@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "figure/color_range.hpp"
 #include "figure/figure_layout.hpp"
 
@@ -17,11 +17,8 @@ std::string quantity_label(const FieldInfo& info) {
 }
 
 std::string range_note(const std::string& subject, const FieldInfo& info, ValueRange r, const char* origin) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%s %s: %.4g .. %.4g%s%s (%s)", subject.c_str(), info.key.c_str(),
-                r.min * info.display_scale, r.max * info.display_scale, info.unit.empty() ? "" : " ",
-                info.unit.c_str(), origin);
-  return buf;
+  return format("%s %s: %.4g .. %.4g%s%s (%s)", subject.c_str(), info.key.c_str(), r.min * info.display_scale,
+                r.max * info.display_scale, info.unit.empty() ? "" : " ", info.unit.c_str(), origin);
 }
 
 }  // namespace
@@ -72,10 +69,7 @@ RunFigures::RunFigures(const RunReader& run, const RenderOptions& command_line) 
 }
 
 std::string RunFigures::time_label(const RunFrameInfo& frame) const {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "t = %.*f s   T* = %.2f", time_decimals_, frame.time,
-                frame.time * run_.reference().time_factor());
-  return buf;
+  return format("t = %.*f s   T* = %.2f", time_decimals_, frame.time, frame.time * run_.reference().time_factor());
 }
 
 FigureSpec RunFigures::base() const {

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace bsmpm::render {
 
@@ -104,12 +104,6 @@ void require_same_size(const Image& a, const Image& b) {
   if (a.width() != b.width() || a.height() != b.height())
     throw UsageError("the images differ in size: " + std::to_string(a.width()) + "x" + std::to_string(a.height()) +
                      " and " + std::to_string(b.width()) + "x" + std::to_string(b.height()));
-}
-
-std::string format(const char* fmt, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, value);
-  return buf;
 }
 
 }  // namespace

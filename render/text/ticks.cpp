@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "core/format.hpp"
 
 namespace bsmpm::render {
 
@@ -21,9 +22,7 @@ double nice_number(double x, bool round) {
 }  // namespace
 
 std::string format_number(double value, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", std::max(decimals, 0), std::fabs(value));
-  std::string digits = buf;
+  const std::string digits = format("%.*f", std::max(decimals, 0), std::fabs(value));
   // Negative only if the printed magnitude is not zero ("-0.00" reads as 0).
   const bool negative = value < 0.0 && digits.find_first_not_of("0.") != std::string::npos;
   return negative ? "\u2212" + digits : digits;

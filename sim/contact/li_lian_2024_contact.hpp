@@ -28,11 +28,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "core/format.hpp"
 #include "scene/scene_description.hpp"
 #include "step/effect.hpp"
 
@@ -90,13 +90,11 @@ template <int P>
 std::string LiLian2024Contact<P>::describe() const {
   std::string s = "contact (Li, Lian et al. 2024):";
   for (const auto& p : pairs_) {
-    char kind[64];
-    if (p.kind == ContactKind::kCoulomb) std::snprintf(kind, sizeof kind, "Coulomb mu = %g", p.friction);
-    else std::snprintf(kind, sizeof kind, "%s", p.kind == ContactKind::kFrictionless ? "frictionless" : "stick");
-    char buf[200];
-    std::snprintf(buf, sizeof buf, " [%s-%s %s%s]", p.name_r.c_str(), p.name_s.c_str(), kind,
-                  p.kind != ContactKind::kStick && !p.distance_check ? ", approach only" : "");
-    s += buf;
+    const std::string kind = p.kind == ContactKind::kCoulomb ? format("Coulomb mu = %g", p.friction)
+                             : p.kind == ContactKind::kFrictionless ? "frictionless"
+                                                                     : "stick";
+    s += format(" [%s-%s %s%s]", p.name_r.c_str(), p.name_s.c_str(), kind.c_str(),
+                p.kind != ContactKind::kStick && !p.distance_check ? ", approach only" : "");
   }
   return s;
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/version.hpp"
 
 namespace bsmpm {
@@ -147,8 +148,7 @@ void RunWriter::write_frame(const Simulation& sim, double dt) {
   const Particles& ps = sim.particles();
   const auto& index = sim.index_of_id();
   const std::size_t n = ps.size();
-  char name[32];
-  std::snprintf(name, sizeof name, "%06d", frames_written());
+  const std::string name = format("%06d", frames_written());
   h5::Handle g = h5::create_group(frames_, name);
   h5::set_attribute(g, "time", sim.time());
   h5::set_attribute(g, "step", sim.step_count());

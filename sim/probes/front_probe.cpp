@@ -1,16 +1,15 @@
 #include "probes/front_probe.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
+
+#include "core/format.hpp"
 
 namespace bsmpm {
 
 std::string FrontProbe::describe() const {
-  char s[200];
-  std::snprintf(s, sizeof s, "%s: front of %s along (%.3g, %.3g)", name().c_str(), body_name_.c_str(),
-                direction_.x(), direction_.y());
-  return s;
+  return format("%s: front of %s along (%.3g, %.3g)", name().c_str(), body_name_.c_str(), direction_.x(),
+                direction_.y());
 }
 
 void FrontProbe::sample(const ProbeContext& ctx, double* row) {

@@ -1,7 +1,8 @@
 #include "probes/material_point.hpp"
 
-#include <cstdio>
 #include <limits>
+
+#include "core/format.hpp"
 
 namespace bsmpm {
 
@@ -28,10 +29,8 @@ Vec2 MaterialPoint::normal(const ProbeContext& ctx, const Vec2& N) const {
 }
 
 std::string MaterialPointProbe::describe() const {
-  char s[200];
-  std::snprintf(s, sizeof s, "%s: material point of %s at (%.4g, %.4g) m", name().c_str(),
-                body_name_.c_str(), point_.reference().x(), point_.reference().y());
-  return s;
+  return format("%s: material point of %s at (%.4g, %.4g) m", name().c_str(), body_name_.c_str(),
+                point_.reference().x(), point_.reference().y());
 }
 
 void MaterialPointProbe::sample(const ProbeContext& ctx, double* row) {

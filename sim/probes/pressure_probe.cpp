@@ -1,7 +1,8 @@
 #include "probes/pressure_probe.hpp"
 
 #include <cmath>
-#include <cstdio>
+
+#include "core/format.hpp"
 
 namespace bsmpm {
 
@@ -19,11 +20,8 @@ PressureProbe::PressureProbe(std::string name, double interval, MaterialPoint an
       scales_(scales), where_(std::move(where)) {}
 
 std::string PressureProbe::describe() const {
-  char s[240];
-  std::snprintf(s, sizeof s, "%s: pressure on %s at (%.4g, %.4g) m, footprint %g mm x %g mm",
-                name().c_str(), where_.c_str(), centre_.x(), centre_.y(), sensor_.size * 1e3,
-                sensor_.depth * 1e3);
-  return s;
+  return format("%s: pressure on %s at (%.4g, %.4g) m, footprint %g mm x %g mm", name().c_str(), where_.c_str(),
+                centre_.x(), centre_.y(), sensor_.size * 1e3, sensor_.depth * 1e3);
 }
 
 double PressureProbe::footprint_pressure(const ProbeContext& ctx, const std::vector<int>& fluid_bodies,

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numeric>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace bsmpm {
 
@@ -21,22 +21,18 @@ struct SignalSpeed {
 };
 
 std::string describe_material(const Body& b) {
-  char s[320];
   if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&b.material)) {
-    char viscosity[64] = "inviscid (no viscous term)";
-    if (f->viscosity > 0.0) std::snprintf(viscosity, sizeof viscosity, "viscosity %g Pa s", f->viscosity);
-    std::snprintf(s, sizeof s, "fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s",
-                  b.name.c_str(), f->eos == EquationOfState::kTait ? "Tait" : "linear", f->bulk_modulus,
-                  f->sound_speed(1.0), f->density, viscosity);
-  } else if (const auto* e = std::get_if<ElasticSolid>(&b.material)) {
-    std::snprintf(s, sizeof s, "elastic stress [%s]: %s, E = %g Pa, nu = %g, rho0 = %g kg/m3",
-                  b.name.c_str(),
+    const std::string viscosity =
+        f->viscosity > 0.0 ? format("viscosity %g Pa s", f->viscosity) : "inviscid (no viscous term)";
+    return format("fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s", b.name.c_str(),
+                  f->eos == EquationOfState::kTait ? "Tait" : "linear", f->bulk_modulus, f->sound_speed(1.0),
+                  f->density, viscosity.c_str());
+  }
+  if (const auto* e = std::get_if<ElasticSolid>(&b.material))
+    return format("elastic stress [%s]: %s, E = %g Pa, nu = %g, rho0 = %g kg/m3", b.name.c_str(),
                   e->model == ElasticModel::kNeoHookean ? "Neo-Hookean" : "Saint Venant-Kirchhoff",
                   e->youngs_modulus, e->poisson_ratio, e->density);
-  } else {
-    return "";  // rigid bodies carry no stress; the rigid motion effect describes them
-  }
-  return s;
+  return "";  // rigid bodies carry no stress; the rigid motion effect describes them
 }
 
 }  // namespace
@@ -392,13 +388,11 @@ void BsmpmSimulation<P>::update_particle_stress(double dt) {
       if (ps.J[p] > 0.0 && std::isfinite(ps.pressure[p]) && ps.stress[p].allFinite() && ps.v[p].allFinite() &&
           ps.x[p].allFinite())
         continue;
-      char msg[320];
-      std::snprintf(msg, sizeof msg,
-                    "numerical instability at step %ld (t = %.6g s): particle %u of body '%s' at (%.4g, "
-                    "%.4g) has J = %.3g, p = %.3g, |v| = %.3g; reduce the time step (time.cfl or time.dt)",
-                    st_.step + 1, st_.time + dt, ps.id[p], st_.bodies[ps.body[p]].name.c_str(), ps.x[p].x(),
-                    ps.x[p].y(), ps.J[p], ps.pressure[p], ps.v[p].norm());
-      throw NumericalError(msg);
+      throw NumericalError(format(
+          "numerical instability at step %ld (t = %.6g s): particle %u of body '%s' at (%.4g, %.4g) has J = %.3g, "
+          "p = %.3g, |v| = %.3g; reduce the time step (time.cfl or time.dt)",
+          st_.step + 1, st_.time + dt, ps.id[p], st_.bodies[ps.body[p]].name.c_str(), ps.x[p].x(), ps.x[p].y(),
+          ps.J[p], ps.pressure[p], ps.v[p].norm()));
     }
     throw NumericalError("numerical instability at step " + std::to_string(st_.step + 1) +
                          ": a non-finite state; reduce the time step (time.cfl or time.dt)");

@@ -4,10 +4,10 @@
 // velocity vanishes on the whole region, in both the update and the remap.
 #pragma once
 
-#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "core/format.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {
@@ -34,12 +34,9 @@ class ClampedNodes final : public Effect<P> {
   unsigned hooks() const override { return kHookConstrainVelocity; }
   std::string describe() const override {
     std::string s = "clamps:";
-    for (const auto& c : clamps_) {
-      char buf[200];
-      std::snprintf(buf, sizeof buf, " %s on [%g, %g] x [%g, %g] m (%zu control points)", c.body.c_str(), c.min.x(),
-                    c.max.x(), c.min.y(), c.max.y(), c.nodes.size());
-      s += buf;
-    }
+    for (const auto& c : clamps_)
+      s += format(" %s on [%g, %g] x [%g, %g] m (%zu control points)", c.body.c_str(), c.min.x(), c.max.x(), c.min.y(),
+                  c.max.y(), c.nodes.size());
     return s;
   }
   void constrain_velocity(StepState<P>& st, VelocityPhase phase) override {

@@ -4,8 +4,8 @@
 #pragma once
 
 #include <cmath>
-#include <cstdio>
 
+#include "core/format.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {
@@ -22,10 +22,7 @@ class Gravity final : public Effect<P> {
 
   unsigned hooks() const override { return kHookGridForces; }
   std::string describe() const override {
-    char s[160];
-    std::snprintf(s, sizeof s, "gravity: g = %g m/s2, bed slope %g deg (g = [%.4g, %.4g])", g_,
-                  slope_deg_, b_.x(), b_.y());
-    return s;
+    return format("gravity: g = %g m/s2, bed slope %g deg (g = [%.4g, %.4g])", g_, slope_deg_, b_.x(), b_.y());
   }
   void grid_forces(StepState<P>& st) override {
     const int ny = st.grid.ny();

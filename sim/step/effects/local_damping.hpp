@@ -6,8 +6,8 @@
 #pragma once
 
 #include <cmath>
-#include <cstdio>
 
+#include "core/format.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {
@@ -18,9 +18,7 @@ class LocalDamping final : public Effect<P> {
   explicit LocalDamping(double alpha) : alpha_(alpha) {}
   unsigned hooks() const override { return kHookGridForces; }
   std::string describe() const override {
-    char s[120];
-    std::snprintf(s, sizeof s, "local damping: alpha = %g (Cundall, not in the paper)", alpha_);
-    return s;
+    return format("local damping: alpha = %g (Cundall, not in the paper)", alpha_);
   }
   void grid_forces(StepState<P>& st) override {
     const int ny = st.grid.ny();

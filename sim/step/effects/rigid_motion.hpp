@@ -2,10 +2,10 @@
 // carries the body's velocity, so contact sees it as the limit m -> infinity (METHOD.md §3).
 #pragma once
 
-#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "core/format.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {
@@ -23,11 +23,7 @@ class RigidMotion final : public Effect<P> {
   unsigned hooks() const override { return kHookConstrainVelocity; }
   std::string describe() const override {
     std::string s = "rigid motion:";
-    for (const auto& r : bodies_) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, " %s at (%g, %g) m/s", r.body.c_str(), r.velocity.x(), r.velocity.y());
-      s += buf;
-    }
+    for (const auto& r : bodies_) s += format(" %s at (%g, %g) m/s", r.body.c_str(), r.velocity.x(), r.velocity.y());
     return s;
   }
   void constrain_velocity(StepState<P>& st, VelocityPhase phase) override {
