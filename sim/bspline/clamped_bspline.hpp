@@ -1,7 +1,7 @@
 // B-spline basis of degree P over an open (clamped) uniform knot vector on [origin,
 // origin + n_cells h]: the end knots are repeated P+1 times, so there are n_cells + P
 // basis functions, the end ones interpolate at the walls and the basis is a partition of
-// unity everywhere (METHOD.md §1; Gan et al. 2018, IJNME 113:411).
+// unity everywhere (docs/method.md §1; Gan et al. 2018, IJNME 113:411).
 //
 // The degrees of freedom are the control points; their positions are the Greville
 // abscissae xi_i = (t_{i+1} + ... + t_{i+P}) / P.

@@ -2,7 +2,7 @@
 //
 // Li L.H., Lian Y.P., Li M.J., et al. (2024), A contact method for B-spline material point
 // method with application in impact and penetration problems, Comput. Mech. 73:1351-1369;
-// as used by Hua et al. (2025), Section 2.2, eqs. 15-35; METHOD.md §3.
+// as used by Hua et al. (2025), Section 2.2, eqs. 15-35; docs/method.md §6.
 //
 // Every body in contact keeps its own grid field (GridLayer). At a control point where two
 // bodies r and s both have mass:

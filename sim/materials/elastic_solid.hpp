@@ -1,4 +1,4 @@
-// Elastic solid with large rotations, plane strain (METHOD.md §2; Walhorn 2005 benchmark).
+// Elastic solid with large rotations, plane strain (docs/method.md §5; Walhorn 2005 benchmark).
 // Two hyperelastic models, both exactly objective and equal to linear elasticity for small
 // strains:
 //  - Neo-Hookean:               sigma = mu/J (F F^T - I) + lambda ln(J)/J I

@@ -1,5 +1,5 @@
 // Rigid obstacle of prescribed motion: its particles move with a given velocity and act
-// on other bodies only through contact (the limit m -> infinity of METHOD.md §3).
+// on other bodies only through contact (the limit m -> infinity of docs/method.md §5-§6).
 #pragma once
 
 #include "core/types.hpp"

@@ -1,4 +1,4 @@
-// Weakly compressible Newtonian fluid (METHOD.md §2): sigma = -p I + 2 mu dev(D),
+// Weakly compressible Newtonian fluid (docs/method.md §4): sigma = -p I + 2 mu dev(D),
 // with a linear or Tait equation of state. K = rho0 c0^2 is the bulk stiffness.
 #pragma once
 

@@ -1,6 +1,6 @@
 // A pressure sensor on a wall or on a body's face: the fluid pressure averaged over the
-// sensor's footprint (METHOD.md §4: "~8 mm"), taken as the volume-weighted mean pressure of
-// the fluid particles within `size` along the face and `depth` from it. A dry sensor reads 0.
+// sensor's footprint (docs/method.md §8: 8 mm by default), taken as the volume-weighted
+// mean pressure of the fluid particles within `size` along the face and `depth` from it. A dry sensor reads 0.
 // Columns t, T*, P, P* with T* = t sqrt(g/H) and P* = P / (rho g H).
 #pragma once
 

@@ -52,7 +52,7 @@ struct ContactDescription {
   int body_a = 0, body_b = 0;
   ContactKind kind = ContactKind::kFrictionless;
   double friction = 0.0;            // Coulomb coefficient
-  bool distance_check = true;       // the Greville-position gap criterion (METHOD.md §3)
+  bool distance_check = true;       // the Greville-position gap criterion (docs/method.md §6)
   SourceLocation where;
 };
 

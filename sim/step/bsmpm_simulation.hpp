@@ -1,4 +1,4 @@
-// One explicit BSMPM step, MUSL variant (METHOD.md §1; paper eqs. 5-14), for spline order P.
+// One explicit BSMPM step, MUSL variant (docs/method.md §2; paper eqs. 5-14), for spline order P.
 // The step reads as its phases; effects (gravity, walls, contact, ...) plug into the hooks
 // declared in effect.hpp and are absent when the scene does not ask for them.
 #pragma once

@@ -15,8 +15,8 @@ enum EffectHook : unsigned {
   kHookConstrainVelocity = 1u << 1, // essential conditions on nodal velocities
 };
 
-// The constraints run twice per step: on v_I^{k+1} (step 4 of METHOD.md §1) and on the
-// remapped velocities of eq. 13 (step 6).
+// The constraints run twice per step: on v_I^{k+1} (docs/method.md §2, step 5) and on the
+// remapped velocities of eq. 13 (step 7).
 enum class VelocityPhase { kUpdate, kRemap };
 
 inline std::vector<Vec2>& phase_velocity(GridLayer& layer, VelocityPhase phase) {

@@ -43,7 +43,7 @@ class Simulation {
  public:
   virtual ~Simulation() = default;
 
-  // One MUSL step of size dt (METHOD.md §1, eqs. 5-14).
+  // One MUSL step of size dt (docs/method.md §2, eqs. 5-14).
   virtual void advance(double dt) = 0;
   // Largest c + |v| over the particles after the last step (for the CFL time step).
   virtual double max_signal_speed() const = 0;

@@ -1,6 +1,7 @@
 // Body force m g on the control points (eq. 8, first term): since sum_p m_p b S_Ip =
 // m_I b for a uniform b, gravity costs one pass over the active nodes, not over particles.
-// A bed slope theta rotates gravity in the tank frame (paper Fig. 9; METHOD.md §4 reading).
+// A bed slope theta rotates gravity in the tank frame (paper Fig. 9; the reading in
+// docs/method.md §2, step 3).
 #pragma once
 
 #include <cmath>

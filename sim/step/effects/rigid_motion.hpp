@@ -1,5 +1,5 @@
 // Rigid obstacles of prescribed motion: every control point of a rigid body's own field
-// carries the body's velocity, so contact sees it as the limit m -> infinity (METHOD.md §3).
+// carries the body's velocity, so contact sees it as the limit m -> infinity (docs/method.md §5).
 #pragma once
 
 #include <string>

@@ -1,6 +1,6 @@
-// The domain's four sides as walls (the tank; METHOD.md §1 step 4). The clamped basis
-// interpolates at the boundary, so only the outermost control points lie on a wall, and
-// the velocity there is the velocity of the wall line itself.
+// The domain's four sides as walls (the tank; docs/method.md §3 and §2, step 5). The
+// clamped basis interpolates at the boundary, so only the outermost control points lie on
+// a wall, and the velocity there is the velocity of the wall line itself.
 //  - slip:     free slip that lets water leave the wall: the normal velocity is removed
 //              only when it points into the wall (v.n_out > 0). Whether a control point
 //              is held is decided on v_I^{k+1} and the same decision is applied to the
