@@ -12,7 +12,7 @@
 #include "figure/figure_spec.hpp"
 #include "image/rect.hpp"
 #include "scene/scene_loader.hpp"
-#include "scene/toml_reader.hpp"
+#include "parameters/table_reader.hpp"
 
 namespace bsmpm::render {
 

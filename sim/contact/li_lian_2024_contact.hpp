@@ -29,29 +29,30 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "contact/contact_parameters.hpp"
+#include "core/boundaries.hpp"
 #include "core/format.hpp"
-#include "scene/scene_description.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {
 
-struct ContactPair {
-  int body_r = 0, body_s = 0;
-  std::string name_r, name_s;
-  ContactKind kind = ContactKind::kFrictionless;
-  double friction = 0.0;
-  bool distance_check = true;
-};
-
 template <int P>
-class LiLian2024Contact final : public Effect<P> {
+class LiLian2024Contact final : public EffectBase<LiLian2024Contact<P>, P> {
  public:
-  explicit LiLian2024Contact(std::vector<ContactPair> pairs) : pairs_(std::move(pairs)), state_(pairs_.size()) {}
+  using Parameters = ContactParameters;
+  // After the prescribed motion of rigid bodies, which it must see; before the walls.
+  static constexpr EffectPhase kPhase = EffectPhase::kContact;
+  // The pairs whose bodies have fields of their own; absent when there is none (a "stick"
+  // pair of deformable bodies shares one field: that is a single field, no contact).
+  static std::unique_ptr<Effect<P>> create(const Parameters& p, const StepState<P>& st);
 
-  unsigned hooks() const override { return kHookConstrainVelocity; }
+  LiLian2024Contact(std::vector<ContactPair> pairs, std::vector<std::string> body_names)
+      : pairs_(std::move(pairs)), body_names_(std::move(body_names)), state_(pairs_.size()) {}
+
   std::string describe() const override;
   void constrain_velocity(StepState<P>& st, VelocityPhase phase) override;
 
@@ -82,9 +83,21 @@ class LiLian2024Contact final : public Effect<P> {
   void correct(StepState<P>& st, const ContactPair& pair, PairState& ps, VelocityPhase phase) const;
 
   std::vector<ContactPair> pairs_;
+  std::vector<std::string> body_names_;  // for describe()
   std::vector<PairState> state_;
   std::vector<int> slot_;  // control point -> index in PairState::nodes, or -1
 };
+
+template <int P>
+std::unique_ptr<Effect<P>> LiLian2024Contact<P>::create(const Parameters& p, const StepState<P>& st) {
+  std::vector<ContactPair> pairs;
+  for (const ContactPair& c : p.pairs)
+    if (st.bodies[c.body_r].layer != st.bodies[c.body_s].layer) pairs.push_back(c);
+  if (pairs.empty()) return nullptr;
+  std::vector<std::string> names;
+  for (const Body& b : st.bodies) names.push_back(b.name);
+  return std::make_unique<LiLian2024Contact>(std::move(pairs), std::move(names));
+}
 
 template <int P>
 std::string LiLian2024Contact<P>::describe() const {
@@ -93,7 +106,7 @@ std::string LiLian2024Contact<P>::describe() const {
     const std::string kind = p.kind == ContactKind::kCoulomb ? format("Coulomb mu = %g", p.friction)
                              : p.kind == ContactKind::kFrictionless ? "frictionless"
                                                                      : "stick";
-    s += format(" [%s-%s %s%s]", p.name_r.c_str(), p.name_s.c_str(), kind.c_str(),
+    s += format(" [%s-%s %s%s]", body_names_[p.body_r].c_str(), body_names_[p.body_s].c_str(), kind.c_str(),
                 p.kind != ContactKind::kStick && !p.distance_check ? ", approach only" : "");
   }
   return s;

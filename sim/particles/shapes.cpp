@@ -58,4 +58,11 @@ bool contains(const Shape& shape, const Vec2& point) { return std::visit(Contain
 double area(const Shape& shape) { return std::visit(Area{}, shape); }
 Rectangle bounding_box(const Shape& shape) { return std::visit(Bounds{}, shape); }
 
+double domain_tolerance(const Rectangle& domain) { return 1e-9 * (domain.max - domain.min).norm(); }
+
+bool extends_outside(const Rectangle& r, const Rectangle& domain) {
+  const double tol = domain_tolerance(domain);
+  return (r.min.array() < domain.min.array() - tol).any() || (r.max.array() > domain.max.array() + tol).any();
+}
+
 }  // namespace bsmpm

@@ -28,4 +28,9 @@ bool contains(const Shape& shape, const Vec2& point);
 double area(const Shape& shape);
 Rectangle bounding_box(const Shape& shape);
 
+// Round-off allowance for geometry compared with the domain's edges.
+double domain_tolerance(const Rectangle& domain);
+// Whether `r` reaches outside `domain` by more than that allowance.
+bool extends_outside(const Rectangle& r, const Rectangle& domain);
+
 }  // namespace bsmpm

@@ -4,17 +4,14 @@
 #include <cmath>
 #include <limits>
 
-#include "contact/li_lian_2024_contact.hpp"
+#include "contact/contact_parameters.hpp"
 #include "particles/seeding.hpp"
 #include "probes/front_probe.hpp"
 #include "probes/material_point.hpp"
 #include "probes/pressure_probe.hpp"
+#include "scene/effect_registry.hpp"
 #include "step/bsmpm_simulation.hpp"
-#include "step/effects/clamped_nodes.hpp"
 #include "step/effects/gravity.hpp"
-#include "step/effects/local_damping.hpp"
-#include "step/effects/rigid_motion.hpp"
-#include "step/effects/tank_walls.hpp"
 
 namespace bsmpm {
 
@@ -31,9 +28,10 @@ void seed_body(const SceneDescription& scene, const BodyDescription& desc, BodyI
   body.spacing = pts.spacing;
   body.begin = ps.size();
   const double rho = density_of(desc.material);
-  const Vec2 g = gravity_vector(scene.gravity, scene.slope_deg);
+  const GravityParameters* gravity = scene.effect_parameters<GravityParameters>();
   const auto* fluid = std::get_if<WeaklyCompressibleFluid>(&desc.material);
-  const bool hydrostatic = fluid && desc.initial_stress == InitialStress::kHydrostatic && scene.gravity > 0.0;
+  const bool hydrostatic = fluid && desc.initial_stress == InitialStress::kHydrostatic && gravity;
+  const Vec2 g = gravity ? gravity->vector() : Vec2::Zero();
   const Vec2 up = hydrostatic ? Vec2(-g / g.norm()) : Vec2(0.0, 1.0);
   double top = -std::numeric_limits<double>::infinity();
   for (const Vec2& x : pts.positions) top = std::max(top, up.dot(x));
@@ -43,7 +41,7 @@ void seed_body(const SceneDescription& scene, const BodyDescription& desc, BodyI
     const Vec2& x = pts.positions[k];
     double J = 1.0, pressure = 0.0;
     if (hydrostatic) {
-      pressure = fluid->density * scene.gravity * (top - up.dot(x));
+      pressure = fluid->density * gravity->g * (top - up.dot(x));
       J = fluid->volume_ratio(pressure);
     }
     const double V0 = pts.volumes[k] / J;
@@ -95,30 +93,30 @@ std::unique_ptr<Probe> make_probe(const SceneDescription& scene, const ProbeDesc
 // pair of deformable bodies shares one field (single field, as standard MPM). Fields that
 // take part in contact also accumulate mass gradients for the normals.
 template <int P>
-void assign_layers(const SceneDescription& scene, StepState<P>& st) {
+void assign_layers(const std::vector<ContactPair>& contacts, StepState<P>& st) {
   const std::size_t n = st.bodies.size();
   std::vector<int> root(n);
-  for (std::size_t b = 0; b < n; ++b) root[b] = scene.contacts.empty() ? 0 : static_cast<int>(b);
+  for (std::size_t b = 0; b < n; ++b) root[b] = contacts.empty() ? 0 : static_cast<int>(b);
   auto find = [&](int b) {
     while (root[b] != b) b = root[b] = root[root[b]];
     return b;
   };
-  for (const auto& c : scene.contacts)
-    if (c.kind == ContactKind::kStick && !is_rigid(st.bodies[c.body_a].material) && !is_rigid(st.bodies[c.body_b].material))
-      root[std::max(find(c.body_a), find(c.body_b))] = std::min(find(c.body_a), find(c.body_b));
+  for (const auto& c : contacts)
+    if (c.kind == ContactKind::kStick && !is_rigid(st.bodies[c.body_r].material) && !is_rigid(st.bodies[c.body_s].material))
+      root[std::max(find(c.body_r), find(c.body_s))] = std::min(find(c.body_r), find(c.body_s));
   // Number the fields in body order.
   std::vector<int> layer_of_root(n, -1);
   int layers = 0;
   for (std::size_t b = 0; b < n; ++b) {
-    const int r = scene.contacts.empty() ? 0 : find(static_cast<int>(b));
+    const int r = contacts.empty() ? 0 : find(static_cast<int>(b));
     if (layer_of_root[r] < 0) layer_of_root[r] = layers++;
     st.bodies[b].layer = layer_of_root[r];
   }
   st.layers.resize(layers);
-  for (const auto& c : scene.contacts)
-    if (st.bodies[c.body_a].layer != st.bodies[c.body_b].layer) {
-      st.layers[st.bodies[c.body_a].layer].tracks_mass_gradient = true;
-      st.layers[st.bodies[c.body_b].layer].tracks_mass_gradient = true;
+  for (const auto& c : contacts)
+    if (st.bodies[c.body_r].layer != st.bodies[c.body_s].layer) {
+      st.layers[st.bodies[c.body_r].layer].tracks_mass_gradient = true;
+      st.layers[st.bodies[c.body_s].layer].tracks_mass_gradient = true;
     }
 }
 
@@ -137,28 +135,9 @@ std::unique_ptr<Simulation> build(const SceneDescription& scene) {
                        "the shape holds no particle at this grid resolution");
     st.bodies.push_back(std::move(body));
   }
-  assign_layers(scene, st);
-
-  // Effects in the order the step runs them: forces, then velocity constraints (rigid
-  // motion before contact so contact sees it; walls and clamps last so they hold exactly).
-  std::vector<std::unique_ptr<Effect<P>>> effects;
-  if (scene.gravity > 0.0) effects.push_back(std::make_unique<Gravity<P>>(scene.gravity, scene.slope_deg));
-  if (scene.solver.local_damping > 0.0) effects.push_back(std::make_unique<LocalDamping<P>>(scene.solver.local_damping));
-  std::vector<typename RigidMotion<P>::Rigid> rigid;
-  for (const Body& b : st.bodies)
-    if (const auto* r = std::get_if<RigidBody>(&b.material)) rigid.push_back({b.name, b.layer, r->velocity});
-  if (!rigid.empty()) effects.push_back(std::make_unique<RigidMotion<P>>(std::move(rigid)));
-  std::vector<ContactPair> pairs;
-  for (const auto& c : scene.contacts)
-    if (st.bodies[c.body_a].layer != st.bodies[c.body_b].layer)  // a merged stick pair needs nothing
-      pairs.push_back({c.body_a, c.body_b, scene.bodies[c.body_a].name, scene.bodies[c.body_b].name, c.kind,
-                       c.friction, c.distance_check});
-  if (!pairs.empty()) effects.push_back(std::make_unique<LiLian2024Contact<P>>(std::move(pairs)));
-  effects.push_back(std::make_unique<TankWalls<P>>(scene.walls));
-  std::vector<typename ClampedNodes<P>::Clamp> clamps;
-  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-    for (const Rectangle& r : scene.bodies[b].clamps) clamps.push_back({st.bodies[b].name, st.bodies[b].layer, r.min, r.max, {}});
-  if (!clamps.empty()) effects.push_back(std::make_unique<ClampedNodes<P>>(st.grid, std::move(clamps)));
+  const ContactParameters* contacts = scene.effect_parameters<ContactParameters>();
+  assign_layers(contacts ? contacts->pairs : std::vector<ContactPair>{}, st);
+  auto effects = create_effects<P>(scene.effects, st);
 
   std::vector<std::unique_ptr<Probe>> probes;
   for (const auto& d : scene.probes) probes.push_back(make_probe(scene, d, st.particles, st.bodies));

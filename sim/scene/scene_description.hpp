@@ -3,17 +3,17 @@
 // where seeding decides: a shape too small to hold a particle at the grid's resolution.
 #pragma once
 
-#include <array>
+#include <any>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/boundaries.hpp"
 #include "core/error.hpp"
 #include "core/types.hpp"
 #include "materials/material.hpp"
 #include "particles/shapes.hpp"
 #include "probes/probe.hpp"
-#include "step/effects/tank_walls.hpp"
 #include "step/simulation.hpp"
 #include "step/time_step.hpp"
 
@@ -28,7 +28,6 @@ struct BodyDescription {
   Shape shape;
   Vec2 velocity = Vec2::Zero();
   InitialStress initial_stress = InitialStress::kNone;
-  std::vector<Rectangle> clamps;  // regions whose control points hold this body still
   SourceLocation where;
 };
 
@@ -46,16 +45,6 @@ struct ProbeDescription {
   double interval = 0.0;           // 0: every step
 };
 
-enum class ContactKind { kFrictionless, kCoulomb, kStick };
-
-struct ContactDescription {
-  int body_a = 0, body_b = 0;
-  ContactKind kind = ContactKind::kFrictionless;
-  double friction = 0.0;            // Coulomb coefficient
-  bool distance_check = true;       // the Greville-position gap criterion (docs/method.md §6)
-  SourceLocation where;
-};
-
 struct SceneDescription {
   std::string path;          // the scene file
   std::string source_text;   // its text as read
@@ -63,26 +52,34 @@ struct SceneDescription {
   std::string title;
 
   Vec2 domain_min = Vec2::Zero(), domain_max = Vec2::Ones();
-  std::array<WallKind, 4> walls{WallKind::kSlip, WallKind::kSlip, WallKind::kSlip, WallKind::kSlip};
 
   double cell_size = 0.01;
   int order = 2;
   int particles_per_cell = 2;  // per axis
 
   TimeStepSettings time;
-  double gravity = 9.81;
-  double slope_deg = 0.0;
   double frame_interval = 0.01;
   ReferenceScales reference;
   SolverSettings solver;
 
   std::vector<BodyDescription> bodies;
   std::vector<ProbeDescription> probes;
-  std::vector<ContactDescription> contacts;
+  // The parameters of each optional effect the scene asks for (gravity, walls, contacts,
+  // ...), as the effect read them (scene/effect_registry.hpp).
+  std::vector<std::any> effects;
+
+  // The parameters of the effect that reads a T, or nullptr when the scene does not ask for it.
+  template <class T>
+  const T* effect_parameters() const {
+    for (const std::any& e : effects)
+      if (const T* p = std::any_cast<T>(&e)) return p;
+    return nullptr;
+  }
 
   // Cells per axis and the actual cell size (the domain is split into whole cells).
   int cells_x() const;
   int cells_y() const;
+  Rectangle domain() const { return {domain_min, domain_max}; }
   Vec2 actual_cell_size() const { return {(domain_max - domain_min).x() / cells_x(), (domain_max - domain_min).y() / cells_y()}; }
 };
 

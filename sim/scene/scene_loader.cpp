@@ -6,29 +6,24 @@
 #include <regex>
 #include <sstream>
 
+#include "parameters/scene_tables.hpp"
+#include "parameters/table_reader.hpp"
+#include "scene/effect_registry.hpp"
 #include "scene/overrides.hpp"
-#include "scene/toml_reader.hpp"
+#include "step/effects/gravity.hpp"
 
 namespace bsmpm {
 
 namespace {
 
-const std::vector<std::string> kWallNames = {"left", "right", "bottom", "top"};
 const char* const kForeignTables[] = {"render"};
 
-void read_domain(TableReader t, SceneDescription& s) {
+// domain.min and domain.max; its walls are the tank walls effect's.
+void read_domain(TableReader& t, SceneDescription& s) {
   s.domain_min = t.vec2("min");
   s.domain_max = t.vec2("max");
   if (!(s.domain_max.x() > s.domain_min.x() && s.domain_max.y() > s.domain_min.y()))
     t.fail("max", "must exceed domain.min in both x and y");
-  if (auto walls = t.optional_table("walls")) {
-    for (int side = 0; side < 4; ++side) {
-      const std::string kind = walls->choice_or(kWallNames[side], "slip", {"slip", "symmetry", "no_slip"});
-      s.walls[side] = kind == "slip" ? WallKind::kSlip : kind == "symmetry" ? WallKind::kSymmetry : WallKind::kNoSlip;
-    }
-    walls->finish();
-  }
-  t.finish();
 }
 
 void read_grid(TableReader t, SceneDescription& s) {
@@ -105,27 +100,6 @@ Rectangle read_rectangle(TableReader& t) {
   return r;
 }
 
-// Round-off allowance for geometry compared with the domain's edges.
-double domain_tolerance(const SceneDescription& s) { return 1e-9 * (s.domain_max - s.domain_min).norm(); }
-
-bool outside_domain(const Rectangle& r, const SceneDescription& s) {
-  const double tol = domain_tolerance(s);
-  return (r.min.array() < s.domain_min.array() - tol).any() || (r.max.array() > s.domain_max.array() + tol).any();
-}
-
-// A clamp region may be a segment or a point (max == min along an axis); it must lie in the
-// domain and touch its body (a region beside the body would clamp nothing, or another body).
-Rectangle read_region(TableReader& t, const Shape& body, const SceneDescription& s) {
-  Rectangle r{t.vec2("min"), t.vec2("max")};
-  if (!(r.max.x() >= r.min.x() && r.max.y() >= r.min.y())) t.fail("max", "must not be below min in x or y");
-  if (outside_domain(r, s)) t.fail("min", "the region extends outside the domain");
-  const double tol = domain_tolerance(s);
-  const Rectangle box = bounding_box(body);
-  if ((r.max.array() < box.min.array() - tol).any() || (r.min.array() > box.max.array() + tol).any())
-    t.fail("min", "the region does not touch its body's shape");
-  return r;
-}
-
 // A point that names a place on body `b` (a tracked material point, a pressure sensor): it
 // must lie within one grid cell of the body's bounding box.
 Vec2 read_point_on_body(TableReader& t, int b, const SceneDescription& s) {
@@ -150,12 +124,15 @@ Shape read_shape(TableReader t, const SceneDescription& s) {
     shape = p;
     if (area(shape) <= 0.0) t.fail("points", "polygon has zero area");
   }
-  if (outside_domain(bounding_box(shape), s)) t.fail("type", "shape extends outside the domain");
+  if (extends_outside(bounding_box(shape), s.domain())) t.fail("type", "shape extends outside the domain");
   t.finish();
   return shape;
 }
 
-void read_bodies(TableReader& root, SceneDescription& s, const std::map<std::string, Material>& materials) {
+// The bodies' own keys; their tables stay open for the effects' keys (e.g. clamp) and are
+// finished by the caller.
+std::vector<TableReader> read_bodies(TableReader& root, SceneDescription& s,
+                                     const std::map<std::string, Material>& materials) {
   auto bodies = root.tables("bodies");
   if (bodies.empty()) root.fail("bodies", "the scene has no [[bodies]]");
   for (auto& t : bodies) {
@@ -177,29 +154,23 @@ void read_bodies(TableReader& root, SceneDescription& s, const std::map<std::str
     b.initial_stress = stress == "hydrostatic" ? InitialStress::kHydrostatic : InitialStress::kNone;
     if (b.initial_stress == InitialStress::kHydrostatic && !is_fluid(b.material))
       t.fail("initial_stress", "\"hydrostatic\" applies to fluid bodies only");
-    if (b.initial_stress == InitialStress::kHydrostatic && !(s.gravity > 0.0))
-      t.fail("initial_stress", "\"hydrostatic\" needs gravity (gravity.g > 0)");
-    for (auto& c : t.tables("clamp")) {
-      b.clamps.push_back(read_region(c, b.shape, s));
-      c.finish();
-    }
-    if (!b.clamps.empty() && is_rigid(b.material)) t.fail("clamp", "a rigid body's motion is prescribed already");
-    t.finish();
     s.bodies.push_back(std::move(b));
   }
+  return bodies;
 }
 
-int find_body(TableReader& t, std::string_view key, const std::string& name, const SceneDescription& s) {
-  for (std::size_t i = 0; i < s.bodies.size(); ++i)
-    if (s.bodies[i].name == name) return static_cast<int>(i);
-  t.fail(key, "no body named \"" + name + "\"");
+// A hydrostatic start needs the gravity effect (read after the bodies).
+void check_hydrostatic_bodies(const std::vector<TableReader>& tables, const SceneDescription& s) {
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
+    if (s.bodies[b].initial_stress == InitialStress::kHydrostatic && !s.effect_parameters<GravityParameters>())
+      tables[b].fail("initial_stress", "\"hydrostatic\" needs gravity (gravity.g > 0)");
 }
 
-int body_index(TableReader& t, std::string_view key, const SceneDescription& s) {
-  return find_body(t, key, t.string(key), s);
+int body_index(TableReader& t, std::string_view key, const SceneTables& scene) {
+  return scene.find_body(t, key, t.string(key));
 }
 
-void read_probes(TableReader& root, SceneDescription& s) {
+void read_probes(TableReader& root, SceneDescription& s, const SceneTables& scene) {
   static const std::regex valid_name("[A-Za-z0-9_.-]+");
   for (auto& t : root.tables("probes")) {
     ProbeDescription p;
@@ -211,27 +182,28 @@ void read_probes(TableReader& root, SceneDescription& s) {
     p.interval = t.number_or("interval", 0.0, Range::non_negative());
     if (type == "front") {
       p.kind = ProbeDescription::Kind::kFront;
-      p.body = body_index(t, "body", s);
+      p.body = body_index(t, "body", scene);
       p.normal = t.vec2_or("direction", Vec2(1.0, 0.0));
       if (p.normal.norm() < 1e-12) t.fail("direction", "must be a non-zero vector");
     } else if (type == "material_point") {
       p.kind = ProbeDescription::Kind::kMaterialPoint;
-      p.body = body_index(t, "body", s);
+      p.body = body_index(t, "body", scene);
       p.point = read_point_on_body(t, p.body, s);
     } else {
       p.size = t.number_or("size", 0.008, Range::positive());
       if (t.has("depth")) p.depth = t.number("depth", Range::positive());
       if (type == "wall_pressure") {
         p.kind = ProbeDescription::Kind::kWallPressure;
-        const std::string wall = t.choice("wall", kWallNames);
-        p.wall = static_cast<int>(std::find(kWallNames.begin(), kWallNames.end(), wall) - kWallNames.begin());
+        const std::vector<std::string>& walls = wall_side_names();
+        const std::string wall = t.choice("wall", walls);
+        p.wall = static_cast<int>(std::find(walls.begin(), walls.end(), wall) - walls.begin());
         const bool vertical = p.wall == kLeft || p.wall == kRight;
         const double lo = vertical ? s.domain_min.y() : s.domain_min.x();
         const double hi = vertical ? s.domain_max.y() : s.domain_max.x();
         p.position = t.number("position", Range::closed(lo, hi));
       } else {
         p.kind = ProbeDescription::Kind::kSurfacePressure;
-        p.body = body_index(t, "body", s);
+        p.body = body_index(t, "body", scene);
         p.point = read_point_on_body(t, p.body, s);
         p.normal = t.vec2("normal");
         if (p.normal.norm() < 1e-12) t.fail("normal", "must be a non-zero vector");
@@ -239,41 +211,6 @@ void read_probes(TableReader& root, SceneDescription& s) {
     }
     t.finish();
     s.probes.push_back(p);
-  }
-}
-
-void read_contacts(TableReader& root, SceneDescription& s) {
-  for (auto& t : root.tables("contacts")) {
-    ContactDescription c;
-    c.where = t.where();
-    {
-      auto pair = t.string_pair("bodies");
-      int ids[2];
-      for (int k = 0; k < 2; ++k) ids[k] = find_body(t, "bodies", pair[k], s);
-      if (ids[0] == ids[1]) t.fail("bodies", "a contact needs two different bodies");
-      c.body_a = ids[0];
-      c.body_b = ids[1];
-    }
-    const std::string kind = t.choice("type", {"frictionless", "coulomb", "stick"});
-    c.kind = kind == "frictionless" ? ContactKind::kFrictionless
-             : kind == "coulomb"    ? ContactKind::kCoulomb
-                                    : ContactKind::kStick;
-    if (c.kind == ContactKind::kCoulomb) c.friction = t.number("friction", Range::non_negative());
-    else if (t.has("friction")) t.fail("friction", "only applies to type = \"coulomb\"");
-    c.distance_check = t.boolean_or("distance_check", true);
-    for (const auto& other : s.contacts)
-      if ((other.body_a == c.body_a && other.body_b == c.body_b) || (other.body_a == c.body_b && other.body_b == c.body_a))
-        t.fail("bodies", "this pair already has a contact");
-    t.finish();
-    s.contacts.push_back(c);
-  }
-  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-    if (!is_rigid(s.bodies[b].material)) continue;
-    bool paired = false;
-    for (const auto& c : s.contacts) paired = paired || c.body_a == int(b) || c.body_b == int(b);
-    if (!paired)
-      throw SceneError(s.bodies[b].where, "bodies[" + std::to_string(b) + "].material",
-                       "rigid body \"" + s.bodies[b].name + "\" acts only through contact: add a [[contacts]] entry for it");
   }
 }
 
@@ -312,26 +249,21 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
     meta->string_or("description", "");
     meta->finish();
   }
-  read_domain(t.table("domain"), s);
+  TableReader domain = t.table("domain");
+  read_domain(domain, s);
   read_grid(t.table("grid"), s);
   read_time(t.table("time"), s);
-  if (auto g = t.optional_table("gravity")) {
-    s.gravity = g->number_or("g", 9.81, Range::non_negative());
-    s.slope_deg = g->number_or("slope_deg", 0.0, Range::closed(-60.0, 60.0));
-    g->finish();
-  }
   s.frame_interval = s.time.end / 100.0;
   if (auto out = t.optional_table("output")) {
     s.frame_interval = out->number_or("frame_interval", s.frame_interval, Range::positive());
     out->finish();
   }
-  if (auto solver = t.optional_table("solver")) {
+  std::optional<TableReader> solver = t.optional_table("solver");
+  if (solver) {
     s.solver.flip_fraction = solver->number_or("flip", 1.0, Range::closed(0.0, 1.0));
     s.solver.mass_cutoff_ratio = solver->number_or("mass_cutoff", s.solver.mass_cutoff_ratio, Range::closed(0.0, 1.0));
     s.solver.sort_interval = static_cast<int>(solver->integer_or("sort_interval", 50, 0, 1000000));
     s.solver.smooth_fluid_volume = solver->boolean_or("smooth_fluid_volume", false);
-    s.solver.local_damping = solver->number_or("local_damping", 0.0, {0.0, 1.0, false, true});
-    solver->finish();
   }
   std::map<std::string, Material> materials;
   {
@@ -339,9 +271,21 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
     for (auto& [name, table] : mats.named_tables()) materials.emplace(name, read_material(table));
     mats.finish();
   }
-  read_bodies(t, s, materials);
+  std::vector<TableReader> bodies = read_bodies(t, s, materials);
+
+  // The effects read their own keys, some of them from tables shared with the loader.
+  SceneTables scene{t, domain, solver ? &*solver : nullptr, s.domain(), {}};
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
+    scene.bodies.push_back({bodies[b], s.bodies[b].name, s.bodies[b].material, s.bodies[b].shape});
+  s.effects = read_effects(scene);
+  check_hydrostatic_bodies(bodies, s);
+  for (const TableReader& body : bodies) body.finish();
+  if (solver) solver->finish();
+  domain.finish();
+
   // Reference scales for T* and P*: the first fluid body's height and density by default.
-  s.reference.gravity = s.gravity > 0.0 ? s.gravity : 9.81;
+  const GravityParameters* gravity = s.effect_parameters<GravityParameters>();
+  s.reference.gravity = gravity ? gravity->g : 9.81;
   for (const auto& b : s.bodies)
     if (is_fluid(b.material)) {
       const Rectangle box = bounding_box(b.shape);
@@ -354,8 +298,7 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
     s.reference.density = ref->number_or("density", s.reference.density, Range::positive());
     ref->finish();
   }
-  read_probes(t, s);
-  read_contacts(t, s);
+  read_probes(t, s, scene);
   for (const auto& ext : extensions)
     if (auto table = t.optional_table(ext.table)) ext.validate(*table);
   // Tables owned by other parts of the program ([render]) are theirs to validate; a caller

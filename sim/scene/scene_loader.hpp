@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "scene/scene_description.hpp"
-#include "scene/toml_reader.hpp"
+#include "parameters/table_reader.hpp"
 
 namespace bsmpm {
 

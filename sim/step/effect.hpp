@@ -1,9 +1,12 @@
 // Optional effects composed per scene (after Karamelo's fixes and SPlisHSPlasH's
-// per-effect classes): each effect says which hooks of the step it uses, the step keeps
-// one list per hook, and an effect that a scene does not ask for is simply absent.
+// per-effect classes): the step keeps one list per hook, and an effect that a scene does not
+// ask for is simply absent. An effect derives from EffectBase, which works out the hooks it
+// uses from the methods it overrides and its place in them from its declared phase; it reads
+// its own parameters and builds itself (scene/effect_registry.cpp lists them).
 #pragma once
 
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "step/step_state.hpp"
@@ -13,6 +16,17 @@ namespace bsmpm {
 enum EffectHook : unsigned {
   kHookGridForces = 1u << 0,        // add nodal forces after P2G (eq. 8)
   kHookConstrainVelocity = 1u << 1, // essential conditions on nodal velocities
+};
+
+// Where an effect runs within its hook: the step sorts its effects by phase (stably, so
+// effects of one phase keep their registration order).
+enum class EffectPhase {
+  kBodyForce,         // forces on the nodes (eq. 8)
+  kForceDamping,      // acts on the summed nodal force: after every force is in
+  kPrescribedMotion,  // velocities of bodies whose motion is given (rigid bodies)
+  kContact,           // exchanges momentum between fields: sees the prescribed motion
+  kWalls,             // the tank's walls hold exactly, whatever contact did
+  kClamps,            // clamped control points are at rest, last of all
 };
 
 // The constraints run twice per step: on v_I^{k+1} (docs/method.md §2, step 5) and on the
@@ -27,11 +41,32 @@ template <int P>
 class Effect {
  public:
   virtual ~Effect() = default;
-  virtual unsigned hooks() const = 0;
+  virtual unsigned hooks() const = 0;      // derived by EffectBase, never written by hand
+  virtual EffectPhase phase() const = 0;   // E::kPhase, through EffectBase
   // One line for the start-of-run summary: "name: details".
   virtual std::string describe() const = 0;
   virtual void grid_forces(StepState<P>&) {}
   virtual void constrain_velocity(StepState<P>&, VelocityPhase) {}
+};
+
+// The base of every effect E (CRTP): hooks() holds exactly the methods E overrides, so the
+// step never skips one, and phase() is E::kPhase.
+template <class E, int P>
+class EffectBase : public Effect<P> {
+ public:
+  static constexpr unsigned derived_hooks() {
+    unsigned mask = 0;
+    if constexpr (!std::is_same_v<decltype(&E::grid_forces), decltype(&Effect<P>::grid_forces)>)
+      mask |= kHookGridForces;
+    if constexpr (!std::is_same_v<decltype(&E::constrain_velocity), decltype(&Effect<P>::constrain_velocity)>)
+      mask |= kHookConstrainVelocity;
+    return mask;
+  }
+  unsigned hooks() const final {
+    static_assert(derived_hooks() != 0, "an effect overrides grid_forces, constrain_velocity or both");
+    return derived_hooks();
+  }
+  EffectPhase phase() const final { return E::kPhase; }
 };
 
 }  // namespace bsmpm

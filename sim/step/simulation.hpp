@@ -26,7 +26,6 @@ struct SolverSettings {
   double mass_cutoff_ratio = 1e-6;   // nodal mass cut-off, relative to the lightest particle
   int sort_interval = 50;            // steps between re-sorting particles by cell
   bool smooth_fluid_volume = false;  // project the fluid volume ratio J through the grid
-  double local_damping = 0.0;        // Cundall damping coefficient (0: off)
 };
 
 // What the last step did, for tests and diagnostics.

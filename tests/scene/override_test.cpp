@@ -1,6 +1,7 @@
 // Command-line overrides (--set KEY=VALUE) of scene values.
 #include <catch2/catch.hpp>
 
+#include "step/effects/gravity.hpp"
 #include "test_support.hpp"
 
 using namespace bsmpm;
@@ -22,7 +23,7 @@ TEST_CASE("Overrides change numbers, strings, vectors and array entries", "[scen
   CHECK(std::get<WeaklyCompressibleFluid>(s.bodies[0].material).eos == EquationOfState::kLinear);
   CHECK(s.bodies[0].velocity.x() == Approx(0.5));
   CHECK(s.time.end == Approx(0.1));
-  CHECK(s.slope_deg == Approx(5.0));
+  CHECK(s.effect_parameters<GravityParameters>()->slope_deg == Approx(5.0));
   // The effective scene records the override.
   CHECK(s.effective_text.find("0.008") != std::string::npos);
 }

@@ -5,25 +5,53 @@
 #pragma once
 
 #include <cmath>
+#include <memory>
+#include <optional>
 
 #include "core/format.hpp"
+#include "parameters/scene_tables.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {
 
-inline Vec2 gravity_vector(double g, double slope_deg) {
-  const double theta = slope_deg * kPi / 180.0;
-  return {g * std::sin(theta), -g * std::cos(theta)};
-}
+// [gravity] g = 9.81 (m/s2; 0 turns gravity off), slope_deg = 0 (in [-60, 60]). Hydrostatic
+// seeding and the reference scales use these too.
+struct GravityParameters {
+  double g = 9.81;
+  double slope_deg = 0.0;
+
+  // The gravity vector in the tank frame.
+  Vec2 vector() const {
+    const double theta = slope_deg * kPi / 180.0;
+    return {g * std::sin(theta), -g * std::cos(theta)};
+  }
+
+  // Absent when g = 0: the scene then has no gravity at all.
+  static std::optional<GravityParameters> read(SceneTables& scene) {
+    GravityParameters p;
+    if (auto t = scene.root.optional_table("gravity")) {
+      p.g = t->number_or("g", p.g, Range::non_negative());
+      p.slope_deg = t->number_or("slope_deg", p.slope_deg, Range::closed(-60.0, 60.0));
+      t->finish();
+    }
+    if (!(p.g > 0.0)) return std::nullopt;
+    return p;
+  }
+};
 
 template <int P>
-class Gravity final : public Effect<P> {
+class Gravity final : public EffectBase<Gravity<P>, P> {
  public:
-  Gravity(double g, double slope_deg) : g_(g), slope_deg_(slope_deg), b_(gravity_vector(g, slope_deg)) {}
+  using Parameters = GravityParameters;
+  static constexpr EffectPhase kPhase = EffectPhase::kBodyForce;
+  static std::unique_ptr<Effect<P>> create(const Parameters& p, const StepState<P>&) {
+    return std::make_unique<Gravity>(p);
+  }
 
-  unsigned hooks() const override { return kHookGridForces; }
+  explicit Gravity(const Parameters& p) : p_(p), b_(p.vector()) {}
+
   std::string describe() const override {
-    return format("gravity: g = %g m/s2, bed slope %g deg (g = [%.4g, %.4g])", g_, slope_deg_, b_.x(), b_.y());
+    return format("gravity: g = %g m/s2, bed slope %g deg (g = [%.4g, %.4g])", p_.g, p_.slope_deg, b_.x(), b_.y());
   }
   void grid_forces(StepState<P>& st) override {
     const int ny = st.grid.ny();
@@ -32,7 +60,7 @@ class Gravity final : public Effect<P> {
   }
 
  private:
-  double g_, slope_deg_;
+  Parameters p_;
   Vec2 b_;
 };
 

@@ -6,17 +6,39 @@
 #pragma once
 
 #include <cmath>
+#include <memory>
+#include <optional>
 
 #include "core/format.hpp"
+#include "parameters/scene_tables.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {
 
+// solver.local_damping = alpha in [0, 1), 0 (off) by default.
+struct LocalDampingParameters {
+  double alpha = 0.0;
+
+  static std::optional<LocalDampingParameters> read(SceneTables& scene) {
+    if (!scene.solver) return std::nullopt;
+    const double alpha = scene.solver->number_or("local_damping", 0.0, {0.0, 1.0, false, true});
+    if (!(alpha > 0.0)) return std::nullopt;
+    return LocalDampingParameters{alpha};
+  }
+};
+
 template <int P>
-class LocalDamping final : public Effect<P> {
+class LocalDamping final : public EffectBase<LocalDamping<P>, P> {
  public:
+  using Parameters = LocalDampingParameters;
+  // After every force is in: the damping scales the nodal force sum.
+  static constexpr EffectPhase kPhase = EffectPhase::kForceDamping;
+  static std::unique_ptr<Effect<P>> create(const Parameters& p, const StepState<P>&) {
+    return std::make_unique<LocalDamping>(p.alpha);
+  }
+
   explicit LocalDamping(double alpha) : alpha_(alpha) {}
-  unsigned hooks() const override { return kHookGridForces; }
+
   std::string describe() const override {
     return format("local damping: alpha = %g (Cundall, not in the paper)", alpha_);
   }

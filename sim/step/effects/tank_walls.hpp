@@ -11,30 +11,46 @@
 #pragma once
 
 #include <array>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/boundaries.hpp"
+#include "parameters/scene_tables.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {
 
-enum class WallKind { kSlip, kSymmetry, kNoSlip };
-enum WallSide { kLeft = 0, kRight = 1, kBottom = 2, kTop = 3 };
-inline const char* wall_side_name(int s) {
-  static const char* names[] = {"left", "right", "bottom", "top"};
-  return names[s];
-}
+// [domain.walls] left, right, bottom, top = "slip" (default), "symmetry" or "no_slip".
+struct TankWallParameters {
+  std::array<WallKind, 4> kinds{WallKind::kSlip, WallKind::kSlip, WallKind::kSlip, WallKind::kSlip};
 
-inline const char* wall_kind_name(WallKind k) {
-  return k == WallKind::kSlip ? "slip" : k == WallKind::kSymmetry ? "symmetry" : "no_slip";
-}
+  // Every scene has the tank's walls.
+  static std::optional<TankWallParameters> read(SceneTables& scene) {
+    TankWallParameters p;
+    if (auto walls = scene.domain.optional_table("walls")) {
+      for (int side = 0; side < 4; ++side) {
+        const std::string kind = walls->choice_or(wall_side_name(side), "slip", {"slip", "symmetry", "no_slip"});
+        p.kinds[side] = kind == "slip" ? WallKind::kSlip : kind == "symmetry" ? WallKind::kSymmetry : WallKind::kNoSlip;
+      }
+      walls->finish();
+    }
+    return p;
+  }
+};
 
 template <int P>
-class TankWalls final : public Effect<P> {
+class TankWalls final : public EffectBase<TankWalls<P>, P> {
  public:
+  using Parameters = TankWallParameters;
+  static constexpr EffectPhase kPhase = EffectPhase::kWalls;
+  static std::unique_ptr<Effect<P>> create(const Parameters& p, const StepState<P>&) {
+    return std::make_unique<TankWalls>(p.kinds);
+  }
+
   explicit TankWalls(std::array<WallKind, 4> kinds) : kinds_(kinds) {}
 
-  unsigned hooks() const override { return kHookConstrainVelocity; }
   std::string describe() const override {
     std::string s = "tank walls:";
     for (int side = 0; side < 4; ++side)

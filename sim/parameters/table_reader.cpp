@@ -1,4 +1,4 @@
-#include "scene/toml_reader.hpp"
+#include "parameters/table_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
