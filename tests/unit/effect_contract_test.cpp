@@ -1,0 +1,116 @@
+// The contract between the step and its effects: an effect's hooks are exactly the methods
+// it overrides, and the step runs effects in the order of their declared phases, whatever
+// order they were given in.
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "contact/li_lian_2024_contact.hpp"
+#include "step/bsmpm_simulation.hpp"
+#include "step/effects/clamped_nodes.hpp"
+#include "step/effects/gravity.hpp"
+#include "step/effects/local_damping.hpp"
+#include "step/effects/rigid_motion.hpp"
+#include "step/effects/tank_walls.hpp"
+
+using namespace bsmpm;
+
+namespace {
+
+using Log = std::vector<std::string>;
+
+template <EffectPhase Phase>
+class ForcesOnly final : public EffectBase<ForcesOnly<Phase>, 2> {
+ public:
+  static constexpr EffectPhase kPhase = Phase;
+  ForcesOnly(std::string name, Log& log) : name_(std::move(name)), log_(log) {}
+  std::string describe() const override { return name_; }
+  void grid_forces(StepState<2>&) override { log_.push_back(name_ + " forces"); }
+
+ private:
+  std::string name_;
+  Log& log_;
+};
+
+template <EffectPhase Phase>
+class ConstraintOnly final : public EffectBase<ConstraintOnly<Phase>, 2> {
+ public:
+  static constexpr EffectPhase kPhase = Phase;
+  ConstraintOnly(std::string name, Log& log) : name_(std::move(name)), log_(log) {}
+  std::string describe() const override { return name_; }
+  void constrain_velocity(StepState<2>&, VelocityPhase phase) override {
+    log_.push_back(name_ + (phase == VelocityPhase::kUpdate ? " update" : " remap"));
+  }
+
+ private:
+  std::string name_;
+  Log& log_;
+};
+
+class Both final : public EffectBase<Both, 2> {
+ public:
+  static constexpr EffectPhase kPhase = EffectPhase::kContact;
+  explicit Both(Log& log) : log_(log) {}
+  std::string describe() const override { return "both"; }
+  void grid_forces(StepState<2>&) override { log_.push_back("both forces"); }
+  void constrain_velocity(StepState<2>&, VelocityPhase phase) override {
+    log_.push_back(phase == VelocityPhase::kUpdate ? "both update" : "both remap");
+  }
+
+ private:
+  Log& log_;
+};
+
+// A few fluid particles on a small grid.
+StepState<2> small_state() {
+  StepState<2> st;
+  st.grid = Grid<2>(Vec2(0.0, 0.0), Vec2(0.1, 0.1), 6, 6);
+  Body body;
+  body.name = "water";
+  body.material = WeaklyCompressibleFluid{};
+  for (int k = 0; k < 9; ++k) st.particles.push_back(Vec2(0.2 + 0.02 * (k % 3), 0.2 + 0.02 * (k / 3)), 0.1, 1e-4, 0);
+  body.end = st.particles.size();
+  body.spacing = Vec2(0.02, 0.02);
+  st.bodies.push_back(body);
+  st.layers.resize(1);
+  return st;
+}
+
+}  // namespace
+
+TEST_CASE("An effect's hooks are the methods it overrides", "[effects]") {
+  STATIC_REQUIRE(ForcesOnly<EffectPhase::kBodyForce>::derived_hooks() == kHookGridForces);
+  STATIC_REQUIRE(ConstraintOnly<EffectPhase::kWalls>::derived_hooks() == kHookConstrainVelocity);
+  STATIC_REQUIRE(Both::derived_hooks() == (kHookGridForces | kHookConstrainVelocity));
+  // The registered effects.
+  STATIC_REQUIRE(Gravity<2>::derived_hooks() == kHookGridForces);
+  STATIC_REQUIRE(LocalDamping<2>::derived_hooks() == kHookGridForces);
+  STATIC_REQUIRE(RigidMotion<2>::derived_hooks() == kHookConstrainVelocity);
+  STATIC_REQUIRE(LiLian2024Contact<2>::derived_hooks() == kHookConstrainVelocity);
+  STATIC_REQUIRE(TankWalls<2>::derived_hooks() == kHookConstrainVelocity);
+  STATIC_REQUIRE(ClampedNodes<2>::derived_hooks() == kHookConstrainVelocity);
+}
+
+TEST_CASE("The step runs each effect in its hooks, in the order of the effects' phases", "[effects]") {
+  Log log;
+  std::vector<std::unique_ptr<Effect<2>>> effects;
+  // Given in the wrong order on purpose.
+  effects.push_back(std::make_unique<ConstraintOnly<EffectPhase::kClamps>>("clamps", log));
+  effects.push_back(std::make_unique<ConstraintOnly<EffectPhase::kWalls>>("walls", log));
+  effects.push_back(std::make_unique<Both>(log));
+  effects.push_back(std::make_unique<ConstraintOnly<EffectPhase::kPrescribedMotion>>("rigid", log));
+  effects.push_back(std::make_unique<ForcesOnly<EffectPhase::kForceDamping>>("damping", log));
+  effects.push_back(std::make_unique<ForcesOnly<EffectPhase::kBodyForce>>("gravity", log));
+  effects.push_back(std::make_unique<ConstraintOnly<EffectPhase::kWalls>>("walls 2", log));  // after "walls"
+  BsmpmSimulation<2> sim(small_state(), SolverSettings{}, std::move(effects), {});
+
+  const std::vector<std::string> described = sim.describe_effects();
+  CHECK(std::vector<std::string>(described.end() - 7, described.end()) ==
+        std::vector<std::string>{"gravity", "damping", "rigid", "both", "walls", "walls 2", "clamps"});
+
+  sim.advance(1e-4);
+  CHECK(log == Log{"gravity forces", "damping forces", "both forces",                                 //
+                   "rigid update", "both update", "walls update", "walls 2 update", "clamps update",  //
+                   "rigid remap", "both remap", "walls remap", "walls 2 remap", "clamps remap"});
+}
