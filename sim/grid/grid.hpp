@@ -45,10 +45,10 @@ struct Grid {
 // All arrays are zero between steps outside the nodes the step touched.
 struct GridLayer {
   std::vector<double> mass;
-  std::vector<Vec2> momentum;        // eq. 6 numerator (v_I^k itself goes to velocity_change)
-  std::vector<Vec2> force;           // eqs. 7-8
-  std::vector<Vec2> velocity;        // v_I^{k+1} after all constraints (eq. 10)
-  std::vector<Vec2> velocity_change; // v_I^{k+1} - v_I^k, the FLIP increment of eq. 11
+  std::vector<Vec2> momentum;           // eq. 6 numerator: v_I^k = momentum / mass
+  std::vector<Vec2> force;              // eqs. 7-8
+  std::vector<Vec2> velocity;           // v_I^{k+1} after all constraints (eq. 10)
+  std::vector<Vec2> velocity_increment; // v_I^{k+1} - v_I^k, the FLIP increment of eq. 11
   std::vector<Vec2> remap_velocity;  // eq. 13: remapped momentum, then velocity
   std::vector<Vec2> mass_gradient;   // sum_p m_p grad S_Ip: contact normals (contact only)
   bool tracks_mass_gradient = false;
@@ -59,7 +59,7 @@ struct GridLayer {
     momentum.assign(n, Vec2::Zero());
     force.assign(n, Vec2::Zero());
     velocity.assign(n, Vec2::Zero());
-    velocity_change.assign(n, Vec2::Zero());
+    velocity_increment.assign(n, Vec2::Zero());
     remap_velocity.assign(n, Vec2::Zero());
     if (tracks_mass_gradient) mass_gradient.assign(n, Vec2::Zero());
   }

@@ -105,9 +105,11 @@ void BsmpmSimulation<P>::advance(double dt) {
   particle_to_grid();                       // eqs. 5-7
   for (auto* e : force_hooks_) e->grid_forces(st_);  // eq. 8
   update_grid_velocity(dt);                 // eqs. 9-10 and the essential conditions
-  grid_to_particle_and_remap(dt);           // eqs. 11-13
-  finish_remap();
-  update_particle_stress(dt);               // eq. 14 and the constitutive update
+  move_particles_and_remap_momentum(dt);    // eqs. 11-13
+  update_remap_velocity();                  // eq. 13 and the essential conditions again
+  const DeformationUpdate update = update_deformation_and_stress(dt);  // eq. 14 and the constitutive update
+  max_signal_speed_ = update.max_signal_speed;  // bounds the next time step (CFL)
+  if (update.invalid) throw_instability(dt);
   clear_grid();
   st_.time += dt;
   ++st_.step;
@@ -205,33 +207,76 @@ template <int P>
 void BsmpmSimulation<P>::update_grid_velocity(double dt) {
   const int ny = st_.grid.ny();
   const double cut = st_.mass_cutoff;
-  for (auto& layer : st_.layers) {
-    // velocity_change holds v_I^k until the constraints have run.
+  for (auto& layer : st_.layers)
     for_each_node(layer.active, ny, [&](int n, int, int) {
       const double m = layer.mass[n];
       if (m > cut) {
-        const Vec2 v = layer.momentum[n] / m;                     // eq. 6
-        layer.velocity_change[n] = v;
+        const Vec2 v = layer.momentum[n] / m;                     // v_I^k, eq. 6
         layer.velocity[n] = v + (dt / m) * layer.force[n];       // eqs. 9-10
       }
     });
-  }
   constrain(VelocityPhase::kUpdate);
   // The FLIP increment sees the constrained velocity: a_I = (v_I^{k+1} - v_I^k) / dt.
   for (auto& layer : st_.layers)
     for_each_node(layer.active, ny, [&](int n, int, int) {
-      if (layer.mass[n] > cut) layer.velocity_change[n] = layer.velocity[n] - layer.velocity_change[n];
+      const double m = layer.mass[n];
+      if (m > cut) layer.velocity_increment[n] = layer.velocity[n] - layer.momentum[n] / m;
       else layer.velocity[n].setZero();
     });
 }
 
+namespace {
+
+// The grid velocity v_I^{k+1} and its increment v_I^{k+1} - v_I^k at a particle (eqs. 11-12).
+struct GridVelocityAt {
+  Vec2 velocity = Vec2::Zero();
+  Vec2 increment = Vec2::Zero();
+};
+
 template <int P>
-void BsmpmSimulation<P>::grid_to_particle_and_remap(double dt) {
+inline GridVelocityAt gather_velocity(const ParticleWeights<P>& w, const GridLayer& layer, int ny) {
+  GridVelocityAt g;
+  for (int a = 0; a <= P; ++a) {
+    const int row = (w.i0 + a) * ny + w.j0;
+    for (int c = 0; c <= P; ++c) {
+      const double s = w.wx[a] * w.wy[c];
+      g.velocity += s * layer.velocity[row + c];
+      g.increment += s * layer.velocity_increment[row + c];
+    }
+  }
+  return g;
+}
+
+// Puts a position that a step carried out of [lo, hi] back on its edge; true if it did.
+inline bool keep_inside(Vec2& x, const Vec2& lo, const Vec2& hi) {
+  const Vec2 inside = x.cwiseMax(lo).cwiseMin(hi);
+  if (inside == x) return false;
+  x = inside;
+  return true;
+}
+
+// Adds S_Ip q to the particle's control points of `field`.
+template <int P>
+inline void scatter(const ParticleWeights<P>& w, const Vec2& q, std::vector<Vec2>& field, int ny) {
+  for (int a = 0; a <= P; ++a) {
+    const int row = (w.i0 + a) * ny + w.j0;
+    for (int c = 0; c <= P; ++c) field[row + c] += (w.wx[a] * w.wy[c]) * q;
+  }
+}
+
+}  // namespace
+
+// G2P and the remap in one pass over the particles: the new velocity (eq. 11) and position
+// (eq. 12) from the grid, positions a step would carry out of the domain put back inside it
+// (counted in stats().clamped_positions), and the new momentum scattered back to the grid
+// (eq. 13; update_remap_velocity() divides it by the nodal mass).
+template <int P>
+void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
   const double flip = settings_.flip_fraction;
-  const Vec2 lo = st_.grid.origin(), hi = st_.grid.extent_max();
   const Vec2 margin = 1e-9 * st_.grid.cell_size();
+  const Vec2 lo = st_.grid.origin() + margin, hi = st_.grid.extent_max() - margin;
   long clamped = 0;
   for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
     const Body& body = st_.bodies[b];
@@ -240,44 +285,32 @@ void BsmpmSimulation<P>::grid_to_particle_and_remap(double dt) {
     long body_clamped = 0;
     st_.schedules[b].for_each([&](std::uint32_t p) {
       const auto& w = st_.weights[p];
-      Vec2 v_new = Vec2::Zero(), dv = Vec2::Zero();
-      for (int a = 0; a <= P; ++a) {
-        const int row = (w.i0 + a) * ny + w.j0;
-        for (int c = 0; c <= P; ++c) {
-          const double s = w.wx[a] * w.wy[c];
-          v_new += s * layer.velocity[row + c];
-          dv += s * layer.velocity_change[row + c];
-        }
-      }
-      Vec2 v;
+      const GridVelocityAt grid = gather_velocity<P>(w, layer, ny);
+      Vec2 v, v_new = grid.velocity;
       if (rigid) {
         v = rigid->velocity;
         v_new = v;
       } else {
-        v = flip * (ps.v[p] + dv) + (1.0 - flip) * v_new;  // eq. 11 (flip = 1: paper)
+        v = flip * (ps.v[p] + grid.increment) + (1.0 - flip) * v_new;  // eq. 11 (flip = 1: paper)
       }
       ps.v[p] = v;
-      Vec2 x = ps.x[p] + dt * v_new;                          // eq. 12 with v_I^{k+1}
-      const Vec2 inside = x.cwiseMax(lo + margin).cwiseMin(hi - margin);
-      if (inside != x) {
-        x = inside;
+      Vec2 x = ps.x[p] + dt * v_new;                                   // eq. 12 with v_I^{k+1}
+      if (keep_inside(x, lo, hi)) {
 #pragma omp atomic
         ++body_clamped;
       }
       ps.x[p] = x;
-      const Vec2 mv = ps.mass[p] * v;
-      for (int a = 0; a <= P; ++a) {
-        const int row = (w.i0 + a) * ny + w.j0;
-        for (int c = 0; c <= P; ++c) layer.remap_velocity[row + c] += (w.wx[a] * w.wy[c]) * mv;  // eq. 13
-      }
+      scatter<P>(w, ps.mass[p] * v, layer.remap_velocity, ny);        // eq. 13
     });
     clamped += body_clamped;
   }
   stats_.clamped_positions += clamped;
 }
 
+// The remapped velocity v_bar_I = sum_p S_Ip m_p v_p / m_I (eq. 13), then the essential
+// conditions again: the strain increment (eq. 14) is taken from it.
 template <int P>
-void BsmpmSimulation<P>::finish_remap() {
+void BsmpmSimulation<P>::update_remap_velocity() {
   const int ny = st_.grid.ny();
   const double cut = st_.mass_cutoff;
   for (auto& layer : st_.layers)
@@ -310,94 +343,122 @@ Mat2 velocity_gradient(const ParticleWeights<P>& w, const std::vector<Vec2>& v, 
 
 }  // namespace
 
+// Per body, visiting its material once: the deformation from the remapped velocities
+// (eq. 14), then the stress. The fastest signal bounds the next time step; a particle whose
+// state turned non-finite or inverted makes the step invalid.
 template <int P>
-void BsmpmSimulation<P>::update_particle_stress(double dt) {
+typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_deformation_and_stress(double dt) {
+  DeformationUpdate all;
+  for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
+    const DeformationUpdate body =
+        std::visit([&](const auto& material) { return update_body(b, material, dt); }, st_.bodies[b].material);
+    all.max_signal_speed = std::max(all.max_signal_speed, body.max_signal_speed);
+    all.invalid = all.invalid || body.invalid;
+  }
+  return all;
+}
+
+// Fluid: J <- J det(I + dt L), optionally smoothed through the grid, then the pressure of
+// the equation of state and the viscous stress (compiled out when mu = 0).
+template <int P>
+typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(std::size_t body_index,
+                                                                               const WeaklyCompressibleFluid& mat,
+                                                                               double dt) {
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
-  double speed = 0.0;
-  bool invalid = false;
-  for (std::size_t body_index = 0; body_index < st_.bodies.size(); ++body_index) {
-    const Body& body = st_.bodies[body_index];
-    const auto& v = st_.layers[body.layer].remap_velocity;
-    const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
-    double body_speed = 0.0;
-    bool body_invalid = false;
-    std::visit(
-        [&](const auto& mat) {
-          using M = std::decay_t<decltype(mat)>;
-          if constexpr (std::is_same_v<M, WeaklyCompressibleFluid>) {
-            const bool smooth = settings_.smooth_fluid_volume;
-            if (smooth) {
-              // Volume change from the velocity gradient, then J projected onto the control
-              // points and back before it enters the equation of state.
+  const Body& body = st_.bodies[body_index];
+  const auto& v = st_.layers[body.layer].remap_velocity;
+  const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
+  double body_speed = 0.0;
+  bool body_invalid = false;
+  const bool smooth = settings_.smooth_fluid_volume;
+  if (smooth) {
+    // Volume change from the velocity gradient, then J projected onto the control points and
+    // back before it enters the equation of state.
 #pragma omp parallel for schedule(static)
-              for (long p = begin; p < end; ++p) {
-                const Mat2 L = velocity_gradient<P>(st_.weights[p], v, ny);
-                gradient_scratch_[p] = L;
-                ps.J[p] *= (Mat2::Identity() + dt * L).determinant();
-              }
-              smooth_volume_ratio(body_index);
-            }
-            auto run = [&](auto viscous) {
-#pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
-              for (long p = begin; p < end; ++p) {
-                Mat2 L;
-                double J;
-                if (smooth) {
-                  L = gradient_scratch_[p];
-                  J = ps.J[p];
-                } else {
-                  L = velocity_gradient<P>(st_.weights[p], v, ny);
-                  J = ps.J[p] * (Mat2::Identity() + dt * L).determinant();
-                  ps.J[p] = J;
-                }
-                const double pressure = mat.pressure(J);
-                ps.pressure[p] = pressure;
-                ps.stress[p] = mat.template stress<decltype(viscous)::value>(pressure, L);
-                body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
-                body_invalid = body_invalid || !(J > 0.0) || !std::isfinite(pressure) || !ps.v[p].allFinite();
-              }
-            };
-            // Viscosity only when mu > 0: the inviscid loop has no deviatoric term at all.
-            if (mat.viscosity > 0.0) run(std::true_type{});
-            else run(std::false_type{});
-          } else if constexpr (std::is_same_v<M, ElasticSolid>) {
-#pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
-            for (long p = begin; p < end; ++p) {
-              const Mat2 L = velocity_gradient<P>(st_.weights[p], v, ny);
-              const Mat2 F = (Mat2::Identity() + dt * L) * ps.F[p];
-              const double J = F.determinant();
-              ps.F[p] = F;
-              ps.J[p] = J;
-              const Mat2 sigma = mat.stress(F);
-              ps.stress[p] = sigma;
-              ps.pressure[p] = -0.5 * sigma.trace();
-              body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
-              body_invalid = body_invalid || !(J > 0.0) || !sigma.allFinite() || !ps.v[p].allFinite();
-            }
-          } else {
-            body_speed = SignalSpeed{1.0, 0.0}(mat);
-          }
-        },
-        body.material);
-    speed = std::max(speed, body_speed);
-    invalid = invalid || body_invalid;
-  }
-  max_signal_speed_ = speed;
-  if (invalid) {
-    for (std::size_t p = 0; p < ps.size(); ++p) {
-      if (ps.J[p] > 0.0 && std::isfinite(ps.pressure[p]) && ps.stress[p].allFinite() && ps.v[p].allFinite() &&
-          ps.x[p].allFinite())
-        continue;
-      throw NumericalError(format(
-          "numerical instability at step %ld (t = %.6g s): particle %u of body '%s' at (%.4g, %.4g) has J = %.3g, "
-          "p = %.3g, |v| = %.3g; reduce the time step (time.cfl or time.dt)",
-          st_.step + 1, st_.time + dt, ps.id[p], st_.bodies[ps.body[p]].name.c_str(), ps.x[p].x(), ps.x[p].y(),
-          ps.J[p], ps.pressure[p], ps.v[p].norm()));
+    for (long p = begin; p < end; ++p) {
+      const Mat2 L = velocity_gradient<P>(st_.weights[p], v, ny);
+      gradient_scratch_[p] = L;
+      ps.J[p] *= (Mat2::Identity() + dt * L).determinant();
     }
-    throw NumericalError("numerical instability at step " + std::to_string(st_.step + 1) +
-                         ": a non-finite state; reduce the time step (time.cfl or time.dt)");
+    smooth_volume_ratio(body_index);
   }
+  auto run = [&](auto viscous) {
+#pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
+    for (long p = begin; p < end; ++p) {
+      Mat2 L;
+      double J;
+      if (smooth) {
+        L = gradient_scratch_[p];
+        J = ps.J[p];
+      } else {
+        L = velocity_gradient<P>(st_.weights[p], v, ny);
+        J = ps.J[p] * (Mat2::Identity() + dt * L).determinant();
+        ps.J[p] = J;
+      }
+      const double pressure = mat.pressure(J);
+      ps.pressure[p] = pressure;
+      ps.stress[p] = mat.template stress<decltype(viscous)::value>(pressure, L);
+      body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
+      body_invalid = body_invalid || !(J > 0.0) || !std::isfinite(pressure) || !ps.v[p].allFinite();
+    }
+  };
+  // Viscosity only when mu > 0: the inviscid loop has no deviatoric term at all.
+  if (mat.viscosity > 0.0) run(std::true_type{});
+  else run(std::false_type{});
+  return {body_speed, body_invalid};
+}
+
+// Elastic solid: F <- (I + dt L) F, J = det F, then the hyperelastic Cauchy stress.
+template <int P>
+typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(std::size_t body_index,
+                                                                               const ElasticSolid& mat, double dt) {
+  const int ny = st_.grid.ny();
+  auto& ps = st_.particles;
+  const Body& body = st_.bodies[body_index];
+  const auto& v = st_.layers[body.layer].remap_velocity;
+  const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
+  double body_speed = 0.0;
+  bool body_invalid = false;
+#pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
+  for (long p = begin; p < end; ++p) {
+    const Mat2 L = velocity_gradient<P>(st_.weights[p], v, ny);
+    const Mat2 F = (Mat2::Identity() + dt * L) * ps.F[p];
+    const double J = F.determinant();
+    ps.F[p] = F;
+    ps.J[p] = J;
+    const Mat2 sigma = mat.stress(F);
+    ps.stress[p] = sigma;
+    ps.pressure[p] = -0.5 * sigma.trace();
+    body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
+    body_invalid = body_invalid || !(J > 0.0) || !sigma.allFinite() || !ps.v[p].allFinite();
+  }
+  return {body_speed, body_invalid};
+}
+
+// Rigid body: no deformation, no stress; its prescribed speed still bounds the time step.
+template <int P>
+typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(std::size_t, const RigidBody& mat,
+                                                                               double) {
+  return {SignalSpeed{1.0, 0.0}(mat), false};
+}
+
+// Names the first invalid particle (a NumericalError the run reports and stops on).
+template <int P>
+void BsmpmSimulation<P>::throw_instability(double dt) const {
+  const auto& ps = st_.particles;
+  for (std::size_t p = 0; p < ps.size(); ++p) {
+    if (ps.J[p] > 0.0 && std::isfinite(ps.pressure[p]) && ps.stress[p].allFinite() && ps.v[p].allFinite() &&
+        ps.x[p].allFinite())
+      continue;
+    throw NumericalError(format(
+        "numerical instability at step %ld (t = %.6g s): particle %u of body '%s' at (%.4g, %.4g) has J = %.3g, "
+        "p = %.3g, |v| = %.3g; reduce the time step (time.cfl or time.dt)",
+        st_.step + 1, st_.time + dt, ps.id[p], st_.bodies[ps.body[p]].name.c_str(), ps.x[p].x(), ps.x[p].y(), ps.J[p],
+        ps.pressure[p], ps.v[p].norm()));
+  }
+  throw NumericalError("numerical instability at step " + std::to_string(st_.step + 1) +
+                       ": a non-finite state; reduce the time step (time.cfl or time.dt)");
 }
 
 // Smoothing of the fluid's volume ratio through the grid (solver.smooth_fluid_volume):
@@ -503,7 +564,7 @@ void BsmpmSimulation<P>::clear_grid() {
       std::fill_n(layer.momentum.begin() + first, count, Vec2::Zero());
       std::fill_n(layer.force.begin() + first, count, Vec2::Zero());
       std::fill_n(layer.velocity.begin() + first, count, Vec2::Zero());
-      std::fill_n(layer.velocity_change.begin() + first, count, Vec2::Zero());
+      std::fill_n(layer.velocity_increment.begin() + first, count, Vec2::Zero());
       std::fill_n(layer.remap_velocity.begin() + first, count, Vec2::Zero());
       if (layer.tracks_mass_gradient) std::fill_n(layer.mass_gradient.begin() + first, count, Vec2::Zero());
     }

@@ -45,9 +45,17 @@ class BsmpmSimulation final : public Simulation {
   void scatter_body(std::size_t b);
   void sort_particles_by_cell();
   void update_grid_velocity(double dt);
-  void grid_to_particle_and_remap(double dt);
-  void finish_remap();
-  void update_particle_stress(double dt);
+  void move_particles_and_remap_momentum(double dt);
+  void update_remap_velocity();
+  struct DeformationUpdate {
+    double max_signal_speed = 0.0;  // largest c + |v|: bounds the next time step
+    bool invalid = false;           // some particle's state is non-finite or inverted
+  };
+  DeformationUpdate update_deformation_and_stress(double dt);
+  DeformationUpdate update_body(std::size_t body_index, const WeaklyCompressibleFluid& fluid, double dt);
+  DeformationUpdate update_body(std::size_t body_index, const ElasticSolid& solid, double dt);
+  DeformationUpdate update_body(std::size_t body_index, const RigidBody& rigid, double dt);
+  [[noreturn]] void throw_instability(double dt) const;
   void smooth_volume_ratio(std::size_t body_index);
   void clear_grid();
   void constrain(VelocityPhase phase);
