@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/particle_fields.hpp"
 
 namespace bsmpm {
 
@@ -137,21 +138,23 @@ const RunFrameInfo& RunReader::frame_info(int index) const {
   return frames_[static_cast<std::size_t>(index)];
 }
 
-std::vector<double> RunReader::read_frame_field(int index, const char* field, std::size_t components) const {
+std::vector<double> RunReader::read_frame_field(int index, std::string_view name) const {
   const RunFrameInfo& info = frame_info(index);
+  const ParticleField& field = particle_field(name);
+  const std::size_t expected = static_cast<std::size_t>(field.components) * particle_count();
   return with_path(path_, [&] {
     h5::Handle frames = h5::open_group(file_, "frames");
     h5::Handle g = h5::open_group(frames, info.group);
-    std::vector<double> values = h5::read_doubles(g, field);
-    if (values.size() != components * particle_count())
-      throw IoError("/frames/" + info.group + "/" + field + " holds " + std::to_string(values.size()) +
-                    " values; expected " + std::to_string(components * particle_count()));
+    std::vector<double> values = h5::read_doubles(g, std::string(name));
+    if (values.size() != expected)
+      throw IoError("/frames/" + info.group + "/" + std::string(name) + " holds " + std::to_string(values.size()) +
+                    " values; expected " + std::to_string(expected));
     return values;
   });
 }
 
-std::vector<Vec2> RunReader::read_frame_vectors(int index, const char* field) const {
-  const std::vector<double> flat = read_frame_field(index, field, 2);
+std::vector<Vec2> RunReader::read_frame_vectors(int index, std::string_view name) const {
+  const std::vector<double> flat = read_frame_field(index, name);
   std::vector<Vec2> out(particle_count());
   for (std::size_t k = 0; k < out.size(); ++k) out[k] = Vec2(flat[2 * k], flat[2 * k + 1]);
   return out;
@@ -160,11 +163,11 @@ std::vector<Vec2> RunReader::read_frame_vectors(int index, const char* field) co
 std::vector<Vec2> RunReader::position(int index) const { return read_frame_vectors(index, "position"); }
 std::vector<Vec2> RunReader::velocity(int index) const { return read_frame_vectors(index, "velocity"); }
 std::vector<Vec2> RunReader::displacement(int index) const { return read_frame_vectors(index, "displacement"); }
-std::vector<double> RunReader::pressure(int index) const { return read_frame_field(index, "pressure", 1); }
-std::vector<double> RunReader::volume(int index) const { return read_frame_field(index, "volume", 1); }
+std::vector<double> RunReader::pressure(int index) const { return read_frame_field(index, "pressure"); }
+std::vector<double> RunReader::volume(int index) const { return read_frame_field(index, "volume"); }
 
 std::vector<StressComponents> RunReader::stress(int index) const {
-  const std::vector<double> flat = read_frame_field(index, "stress", 3);
+  const std::vector<double> flat = read_frame_field(index, "stress");
   std::vector<StressComponents> out(particle_count());
   for (std::size_t k = 0; k < out.size(); ++k) out[k] = {flat[3 * k], flat[3 * k + 1], flat[3 * k + 2]};
   return out;

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/types.hpp"
@@ -87,8 +88,9 @@ class RunReader {
 
  private:
   const RunFrameInfo& frame_info(int index) const;
-  std::vector<double> read_frame_field(int index, const char* field, std::size_t components) const;
-  std::vector<Vec2> read_frame_vectors(int index, const char* field) const;
+  // The values of a frame field of io/particle_fields, checked against its component count.
+  std::vector<double> read_frame_field(int index, std::string_view name) const;
+  std::vector<Vec2> read_frame_vectors(int index, std::string_view name) const;
 
   std::string path_;
   h5::Handle file_;

@@ -4,10 +4,12 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/version.hpp"
+#include "io/particle_fields.hpp"
 
 namespace bsmpm {
 
@@ -34,6 +36,25 @@ void write_body_attributes(hid_t g, const Body& b) {
   } else if (const auto* e = std::get_if<ElasticSolid>(&b.material)) {
     h5::set_attribute(g, "youngs_modulus", e->youngs_modulus);
     h5::set_attribute(g, "poisson_ratio", e->poisson_ratio);
+  }
+}
+
+// The field's dataset under `group`: one row per particle, in id order (the order of every
+// frame); `buffer` is scratch space.
+void write_particle_field(hid_t group, const ParticleField& field, const Simulation& sim, std::vector<double>& buffer) {
+  const Particles& ps = sim.particles();
+  const auto& slot_of_id = sim.index_of_id();
+  const std::size_t n = ps.size(), components = static_cast<std::size_t>(field.components);
+  buffer.resize(n * components);
+  for (std::size_t k = 0; k < n; ++k) field.get(ps, slot_of_id[k], &buffer[components * k]);
+  const std::string name(field.name);
+  if (field.type == FieldType::kFloat64) {
+    h5::write_dataset(group, name, buffer.data(), n, components);
+  } else if (field.type == FieldType::kUInt16 && components == 1) {
+    const std::vector<std::uint16_t> values(buffer.begin(), buffer.end());
+    h5::write_dataset(group, name, values.data(), n);
+  } else {
+    throw std::logic_error("io/particle_fields.cpp: no dataset type for particle field '" + name + "'");
   }
 }
 
@@ -83,22 +104,11 @@ RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, co
     }
   }
   {
-    // Per-particle constants, in id order (the order of every frame).
-    const Particles& ps = sim.particles();
-    particle_count_ = ps.size();
-    std::vector<std::uint16_t> body(ps.size());
-    std::vector<double> mass(ps.size()), x0(2 * ps.size());
-    for (std::size_t k = 0; k < ps.size(); ++k) {
-      const std::size_t p = sim.index_of_id()[k];
-      body[k] = ps.body[p];
-      mass[k] = ps.mass[p];
-      x0[2 * k] = ps.x0[p].x();
-      x0[2 * k + 1] = ps.x0[p].y();
-    }
+    particle_count_ = sim.particles().size();
     h5::Handle g = h5::create_group(file_, "particles");
-    h5::write_dataset(g, "body", body.data(), body.size());
-    h5::write_dataset(g, "mass", mass.data(), mass.size(), 1);
-    h5::write_dataset(g, "reference_position", x0.data(), ps.size(), 2);
+    std::vector<double> buffer;
+    for (const ParticleField& field : particle_fields())
+      if (field.has(kInRunHeader)) write_particle_field(g, field, sim, buffer);
   }
   frames_ = h5::create_group(file_, "frames");
   {
@@ -145,38 +155,13 @@ void RunWriter::flush_probes(const Simulation& sim) {
 void RunWriter::write_frame(const Simulation& sim, double dt) {
   if (sim.step_count() == last_frame_step_) return;  // this state is written already
   last_frame_step_ = sim.step_count();
-  const Particles& ps = sim.particles();
-  const auto& index = sim.index_of_id();
-  const std::size_t n = ps.size();
   const std::string name = format("%06d", frames_written());
   h5::Handle g = h5::create_group(frames_, name);
   h5::set_attribute(g, "time", sim.time());
   h5::set_attribute(g, "step", sim.step_count());
   h5::set_attribute(g, "dt", dt);
-
-  std::vector<double> two(2 * n), one(n), three(3 * n);
-  auto write_vec = [&](const char* set, auto get) {
-    for (std::size_t k = 0; k < n; ++k) {
-      const Vec2 v = get(index[k]);
-      two[2 * k] = v.x();
-      two[2 * k + 1] = v.y();
-    }
-    h5::write_dataset(g, set, two.data(), n, 2);
-  };
-  write_vec("position", [&](std::size_t p) { return ps.x[p]; });
-  write_vec("velocity", [&](std::size_t p) { return ps.v[p]; });
-  write_vec("displacement", [&](std::size_t p) { return Vec2(ps.x[p] - ps.x0[p]); });
-  for (std::size_t k = 0; k < n; ++k) one[k] = ps.pressure[index[k]];
-  h5::write_dataset(g, "pressure", one.data(), n, 1);
-  for (std::size_t k = 0; k < n; ++k) one[k] = ps.volume(index[k]);
-  h5::write_dataset(g, "volume", one.data(), n, 1);
-  for (std::size_t k = 0; k < n; ++k) {
-    const Mat2& s = ps.stress[index[k]];
-    three[3 * k] = s(0, 0);
-    three[3 * k + 1] = s(1, 1);
-    three[3 * k + 2] = s(0, 1);
-  }
-  h5::write_dataset(g, "stress", three.data(), n, 3);
+  for (const ParticleField& field : particle_fields())
+    if (field.has(kInFrames)) write_particle_field(g, field, sim, frame_buffer_);
 
   frame_times_.push_back(sim.time());
   frame_names_.push_back(name);
@@ -209,22 +194,24 @@ void RunWriter::write_xdmf() const {
       x << "   <Grid Name=\"frame " << frame_names_[f] << "\" GridType=\"Uniform\">\n"
         << "    <Time Value=\"" << frame_times_[f] << "\"/>\n"
         << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
-        << "    <Geometry GeometryType=\"XY\">\n"
-        << "     <DataItem Dimensions=\"" << n << " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-        << path << "position</DataItem>\n    </Geometry>\n";
-      auto attribute = [&](const char* name, const char* type, int comps, const std::string& where) {
-        x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << type << "\" Center=\"Node\">\n"
-          << "     <DataItem Dimensions=\"" << n;
-        if (comps > 1) x << " " << comps;
-        x << "\" NumberType=\"" << (std::string(name) == "body" ? "UInt\" Precision=\"2" : "Float\" Precision=\"8")
-          << "\" Format=\"HDF\">" << where << "</DataItem>\n    </Attribute>\n";
+        << "    <Geometry GeometryType=\"XY\">\n";
+      auto data_item = [&](const ParticleField& field) {
+        x << "     <DataItem Dimensions=\"" << n;
+        if (field.components > 1) x << " " << field.components;
+        x << "\" NumberType=\"" << (field.type == FieldType::kUInt16 ? "UInt\" Precision=\"2" : "Float\" Precision=\"8")
+          << "\" Format=\"HDF\">" << (field.has(kInFrames) ? path : std::string("run.h5:/particles/")) << field.name
+          << "</DataItem>\n";
       };
-      attribute("pressure", "Scalar", 1, path + "pressure");
-      attribute("velocity", "Vector", 2, path + "velocity");
-      attribute("displacement", "Vector", 2, path + "displacement");
-      attribute("stress", "Vector", 3, path + "stress");
-      attribute("volume", "Scalar", 1, path + "volume");
-      attribute("body", "Scalar", 1, "run.h5:/particles/body");
+      for (const ParticleField& field : particle_fields())
+        if (field.has(kXdmfGeometry)) data_item(field);
+      x << "    </Geometry>\n";
+      for (const ParticleField& field : particle_fields()) {
+        if (!field.has(kXdmfAttribute)) continue;
+        x << "    <Attribute Name=\"" << field.name << "\" AttributeType=\"" << (field.components > 1 ? "Vector" : "Scalar")
+          << "\" Center=\"Node\">\n";
+        data_item(field);
+        x << "    </Attribute>\n";
+      }
       x << "   </Grid>\n";
     }
     x << "  </Grid>\n </Domain>\n</Xdmf>\n";

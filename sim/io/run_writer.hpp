@@ -54,6 +54,7 @@ class RunWriter {
   std::vector<std::size_t> probe_rows_done_;
   std::vector<double> frame_times_;
   std::vector<std::string> frame_names_;
+  std::vector<double> frame_buffer_;  // the values of one frame dataset
   std::size_t particle_count_ = 0;
   long last_frame_step_ = -1;
 };
