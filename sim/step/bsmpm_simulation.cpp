@@ -350,10 +350,13 @@ template <int P>
 typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_deformation_and_stress(double dt) {
   DeformationUpdate all;
   for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
-    const DeformationUpdate body =
-        std::visit([&](const auto& material) { return update_body(b, material, dt); }, st_.bodies[b].material);
-    all.max_signal_speed = std::max(all.max_signal_speed, body.max_signal_speed);
-    all.invalid = all.invalid || body.invalid;
+    const Body& body = st_.bodies[b];
+    const BodyParticles particles{b, static_cast<long>(body.begin), static_cast<long>(body.end),
+                                  st_.layers[body.layer].remap_velocity};
+    const DeformationUpdate update =
+        std::visit([&](const auto& material) { return update_body(particles, material, dt); }, body.material);
+    all.max_signal_speed = std::max(all.max_signal_speed, update.max_signal_speed);
+    all.invalid = all.invalid || update.invalid;
   }
   return all;
 }
@@ -361,14 +364,11 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_deform
 // Fluid: J <- J det(I + dt L), optionally smoothed through the grid, then the pressure of
 // the equation of state and the viscous stress (compiled out when mu = 0).
 template <int P>
-typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(std::size_t body_index,
+typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(const BodyParticles& body,
                                                                                const WeaklyCompressibleFluid& mat,
                                                                                double dt) {
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
-  const Body& body = st_.bodies[body_index];
-  const auto& v = st_.layers[body.layer].remap_velocity;
-  const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
   double body_speed = 0.0;
   bool body_invalid = false;
   const bool smooth = settings_.smooth_fluid_volume;
@@ -376,23 +376,23 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(s
     // Volume change from the velocity gradient, then J projected onto the control points and
     // back before it enters the equation of state.
 #pragma omp parallel for schedule(static)
-    for (long p = begin; p < end; ++p) {
-      const Mat2 L = velocity_gradient<P>(st_.weights[p], v, ny);
+    for (long p = body.begin; p < body.end; ++p) {
+      const Mat2 L = velocity_gradient<P>(st_.weights[p], body.velocity, ny);
       gradient_scratch_[p] = L;
       ps.J[p] *= (Mat2::Identity() + dt * L).determinant();
     }
-    smooth_volume_ratio(body_index);
+    smooth_volume_ratio(body.index);
   }
   auto run = [&](auto viscous) {
 #pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
-    for (long p = begin; p < end; ++p) {
+    for (long p = body.begin; p < body.end; ++p) {
       Mat2 L;
       double J;
       if (smooth) {
         L = gradient_scratch_[p];
         J = ps.J[p];
       } else {
-        L = velocity_gradient<P>(st_.weights[p], v, ny);
+        L = velocity_gradient<P>(st_.weights[p], body.velocity, ny);
         J = ps.J[p] * (Mat2::Identity() + dt * L).determinant();
         ps.J[p] = J;
       }
@@ -411,18 +411,15 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(s
 
 // Elastic solid: F <- (I + dt L) F, J = det F, then the hyperelastic Cauchy stress.
 template <int P>
-typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(std::size_t body_index,
+typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(const BodyParticles& body,
                                                                                const ElasticSolid& mat, double dt) {
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
-  const Body& body = st_.bodies[body_index];
-  const auto& v = st_.layers[body.layer].remap_velocity;
-  const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
   double body_speed = 0.0;
   bool body_invalid = false;
 #pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
-  for (long p = begin; p < end; ++p) {
-    const Mat2 L = velocity_gradient<P>(st_.weights[p], v, ny);
+  for (long p = body.begin; p < body.end; ++p) {
+    const Mat2 L = velocity_gradient<P>(st_.weights[p], body.velocity, ny);
     const Mat2 F = (Mat2::Identity() + dt * L) * ps.F[p];
     const double J = F.determinant();
     ps.F[p] = F;
@@ -438,8 +435,8 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(s
 
 // Rigid body: no deformation, no stress; its prescribed speed still bounds the time step.
 template <int P>
-typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(std::size_t, const RigidBody& mat,
-                                                                               double) {
+typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(const BodyParticles&,
+                                                                               const RigidBody& mat, double) {
   return {SignalSpeed{1.0, 0.0}(mat), false};
 }
 

@@ -51,10 +51,16 @@ class BsmpmSimulation final : public Simulation {
     double max_signal_speed = 0.0;  // largest c + |v|: bounds the next time step
     bool invalid = false;           // some particle's state is non-finite or inverted
   };
+  // One body's particles [begin, end) and the remapped velocities of its grid field.
+  struct BodyParticles {
+    std::size_t index;
+    long begin, end;
+    const std::vector<Vec2>& velocity;
+  };
   DeformationUpdate update_deformation_and_stress(double dt);
-  DeformationUpdate update_body(std::size_t body_index, const WeaklyCompressibleFluid& fluid, double dt);
-  DeformationUpdate update_body(std::size_t body_index, const ElasticSolid& solid, double dt);
-  DeformationUpdate update_body(std::size_t body_index, const RigidBody& rigid, double dt);
+  DeformationUpdate update_body(const BodyParticles& body, const WeaklyCompressibleFluid& fluid, double dt);
+  DeformationUpdate update_body(const BodyParticles& body, const ElasticSolid& solid, double dt);
+  DeformationUpdate update_body(const BodyParticles& body, const RigidBody& rigid, double dt);
   [[noreturn]] void throw_instability(double dt) const;
   void smooth_volume_ratio(std::size_t body_index);
   void clear_grid();

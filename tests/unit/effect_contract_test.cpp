@@ -20,13 +20,16 @@ namespace {
 
 using Log = std::vector<std::string>;
 
-template <EffectPhase Phase>
-class ForcesOnly final : public EffectBase<ForcesOnly<Phase>, 2> {
+// An effect that logs the calls of the hooks its subclass E overrides.
+template <class E>
+class Logging : public EffectBase<E, 2> {
  public:
-  static constexpr EffectPhase kPhase = Phase;
-  ForcesOnly(std::string name, Log& log) : name_(std::move(name)), log_(log) {}
+  Logging(std::string name, Log& log) : name_(std::move(name)), log_(log) {}
   std::string describe() const override { return name_; }
-  void grid_forces(StepState<2>&) override { log_.push_back(name_ + " forces"); }
+
+ protected:
+  void note(const char* hook) { log_.push_back(name_ + " " + hook); }
+  void note(VelocityPhase phase) { note(phase == VelocityPhase::kUpdate ? "update" : "remap"); }
 
  private:
   std::string name_;
@@ -34,32 +37,27 @@ class ForcesOnly final : public EffectBase<ForcesOnly<Phase>, 2> {
 };
 
 template <EffectPhase Phase>
-class ConstraintOnly final : public EffectBase<ConstraintOnly<Phase>, 2> {
+class ForcesOnly final : public Logging<ForcesOnly<Phase>> {
  public:
   static constexpr EffectPhase kPhase = Phase;
-  ConstraintOnly(std::string name, Log& log) : name_(std::move(name)), log_(log) {}
-  std::string describe() const override { return name_; }
-  void constrain_velocity(StepState<2>&, VelocityPhase phase) override {
-    log_.push_back(name_ + (phase == VelocityPhase::kUpdate ? " update" : " remap"));
-  }
-
- private:
-  std::string name_;
-  Log& log_;
+  using Logging<ForcesOnly>::Logging;
+  void grid_forces(StepState<2>&) override { this->note("forces"); }
 };
 
-class Both final : public EffectBase<Both, 2> {
+template <EffectPhase Phase>
+class ConstraintOnly final : public Logging<ConstraintOnly<Phase>> {
+ public:
+  static constexpr EffectPhase kPhase = Phase;
+  using Logging<ConstraintOnly>::Logging;
+  void constrain_velocity(StepState<2>&, VelocityPhase phase) override { this->note(phase); }
+};
+
+class Both final : public Logging<Both> {
  public:
   static constexpr EffectPhase kPhase = EffectPhase::kContact;
-  explicit Both(Log& log) : log_(log) {}
-  std::string describe() const override { return "both"; }
-  void grid_forces(StepState<2>&) override { log_.push_back("both forces"); }
-  void constrain_velocity(StepState<2>&, VelocityPhase phase) override {
-    log_.push_back(phase == VelocityPhase::kUpdate ? "both update" : "both remap");
-  }
-
- private:
-  Log& log_;
+  using Logging<Both>::Logging;
+  void grid_forces(StepState<2>&) override { note("forces"); }
+  void constrain_velocity(StepState<2>&, VelocityPhase phase) override { note(phase); }
 };
 
 // A few fluid particles on a small grid.
@@ -98,7 +96,7 @@ TEST_CASE("The step runs each effect in its hooks, in the order of the effects' 
   // Given in the wrong order on purpose.
   effects.push_back(std::make_unique<ConstraintOnly<EffectPhase::kClamps>>("clamps", log));
   effects.push_back(std::make_unique<ConstraintOnly<EffectPhase::kWalls>>("walls", log));
-  effects.push_back(std::make_unique<Both>(log));
+  effects.push_back(std::make_unique<Both>("both", log));
   effects.push_back(std::make_unique<ConstraintOnly<EffectPhase::kPrescribedMotion>>("rigid", log));
   effects.push_back(std::make_unique<ForcesOnly<EffectPhase::kForceDamping>>("damping", log));
   effects.push_back(std::make_unique<ForcesOnly<EffectPhase::kBodyForce>>("gravity", log));
