@@ -36,7 +36,8 @@ struct ContactParameters {
       else if (t.has("friction")) t.fail("friction", "only applies to type = \"coulomb\"");
       c.distance_check = t.boolean_or("distance_check", true);
       for (const ContactPair& other : p.pairs)
-        if ((other.body_r == c.body_r && other.body_s == c.body_s) || (other.body_r == c.body_s && other.body_s == c.body_r))
+        if ((other.body_r == c.body_r && other.body_s == c.body_s) ||
+            (other.body_r == c.body_s && other.body_s == c.body_r))
           t.fail("bodies", "this pair already has a contact");
       t.finish();
       p.pairs.push_back(c);
@@ -45,7 +46,8 @@ struct ContactParameters {
       if (!is_rigid(scene.bodies[b].material) || p.involves(static_cast<int>(b))) continue;
       const TableReader& body = scene.bodies[b].table;
       throw SceneError(body.where(), body.dotted("material"),
-                       "rigid body \"" + scene.bodies[b].name + "\" acts only through contact: add a [[contacts]] entry for it");
+                       "rigid body \"" + scene.bodies[b].name +
+                           "\" acts only through contact: add a [[contacts]] entry for it");
     }
     if (p.pairs.empty()) return std::nullopt;
     return p;

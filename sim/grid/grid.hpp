@@ -49,10 +49,10 @@ struct GridLayer {
   std::vector<Vec2> force;              // eqs. 7-8
   std::vector<Vec2> velocity;           // v_I^{k+1} after all constraints (eq. 10)
   std::vector<Vec2> velocity_increment; // v_I^{k+1} - v_I^k, the FLIP increment of eq. 11
-  std::vector<Vec2> remap_velocity;  // eq. 13: remapped momentum, then velocity
-  std::vector<Vec2> mass_gradient;   // sum_p m_p grad S_Ip: contact normals (contact only)
+  std::vector<Vec2> remap_velocity;     // eq. 13: remapped momentum, then velocity
+  std::vector<Vec2> mass_gradient;      // sum_p m_p grad S_Ip: contact normals (contact only)
   bool tracks_mass_gradient = false;
-  NodeBox active;                    // nodes written this step
+  NodeBox active;                       // nodes written this step
 
   void resize(int n) {
     mass.assign(n, 0.0);

@@ -207,8 +207,8 @@ void RunWriter::write_xdmf() const {
       x << "    </Geometry>\n";
       for (const ParticleField& field : particle_fields()) {
         if (!field.has(kXdmfAttribute)) continue;
-        x << "    <Attribute Name=\"" << field.name << "\" AttributeType=\"" << (field.components > 1 ? "Vector" : "Scalar")
-          << "\" Center=\"Node\">\n";
+        x << "    <Attribute Name=\"" << field.name << "\" AttributeType=\""
+          << (field.components > 1 ? "Vector" : "Scalar") << "\" Center=\"Node\">\n";
         data_item(field);
         x << "    </Attribute>\n";
       }

@@ -102,7 +102,8 @@ void assign_layers(const std::vector<ContactPair>& contacts, StepState<P>& st) {
     return b;
   };
   for (const auto& c : contacts)
-    if (c.kind == ContactKind::kStick && !is_rigid(st.bodies[c.body_r].material) && !is_rigid(st.bodies[c.body_s].material))
+    if (c.kind == ContactKind::kStick && !is_rigid(st.bodies[c.body_r].material) &&
+        !is_rigid(st.bodies[c.body_s].material))
       root[std::max(find(c.body_r), find(c.body_s))] = std::min(find(c.body_r), find(c.body_s));
   // Number the fields in body order.
   std::vector<int> layer_of_root(n, -1);

@@ -42,7 +42,9 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
                                     std::vector<std::unique_ptr<Effect<P>>> effects,
                                     std::vector<std::unique_ptr<Probe>> probes)
     : st_(std::move(state)), settings_(settings), effects_(std::move(effects)), probes_(std::move(probes)) {
-  std::stable_sort(effects_.begin(), effects_.end(), [](const auto& a, const auto& b) { return a->phase() < b->phase(); });
+  // The order of the effects' phases, not the order they were given in (EffectPhase).
+  std::stable_sort(effects_.begin(), effects_.end(),
+                   [](const auto& a, const auto& b) { return a->phase() < b->phase(); });
   for (auto& e : effects_) {
     if (e->hooks() & kHookGridForces) force_hooks_.push_back(e.get());
     if (e->hooks() & kHookConstrainVelocity) velocity_hooks_.push_back(e.get());
