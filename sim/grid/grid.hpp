@@ -51,7 +51,9 @@ struct GridLayer {
   std::vector<Vec2> velocity_increment; // v_I^{k+1} - v_I^k, the FLIP increment of eq. 11
   std::vector<Vec2> remap_velocity;     // eq. 13: remapped momentum, then velocity
   std::vector<Vec2> mass_gradient;      // sum_p m_p grad S_Ip: contact normals (contact only)
+  std::vector<double> volume;           // sum_p V_p S_Ip: the volume fraction (particle shifting only)
   bool tracks_mass_gradient = false;
+  bool tracks_volume = false;
   NodeBox active;                       // nodes written this step
 
   void resize(int n) {
@@ -62,6 +64,7 @@ struct GridLayer {
     velocity_increment.assign(n, Vec2::Zero());
     remap_velocity.assign(n, Vec2::Zero());
     if (tracks_mass_gradient) mass_gradient.assign(n, Vec2::Zero());
+    if (tracks_volume) volume.assign(n, 0.0);
   }
 };
 

@@ -20,6 +20,7 @@ struct Particles {
   std::vector<Mat2> F;          // deformation gradient (solids; identity for fluids)
   std::vector<Mat2> stress;     // Cauchy stress, in-plane part (plane strain)
   std::vector<double> pressure; // fluids: equation of state; solids: -tr(sigma)/2
+  std::vector<Mat2> C;          // affine velocity (APIC): v(x) = v_p + C (x - x_p); zero otherwise
   std::vector<std::uint32_t> id;  // index at creation; frames are written in id order
   std::vector<BodyId> body;
 
@@ -35,6 +36,7 @@ struct Particles {
     F.push_back(Mat2::Identity());
     stress.push_back(Mat2::Zero());
     pressure.push_back(0.0);
+    C.push_back(Mat2::Zero());
     id.push_back(static_cast<std::uint32_t>(id.size()));
     body.push_back(b);
   }
