@@ -205,6 +205,28 @@ std::vector<Vec2> TableReader::points(std::string_view key, std::size_t min_coun
   return out;
 }
 
+std::vector<std::string> TableReader::strings(std::string_view key) {
+  const toml::node& n = required(key);
+  if (n.is_string()) return {*n.value<std::string>()};
+  const toml::array* a = n.as_array();
+  if (!a || a->empty()) throw SceneError(location_of(n), dotted(key), "expected a string or a non-empty array of strings");
+  std::vector<std::string> out;
+  for (const toml::node& item : *a) {
+    if (!item.is_string()) throw SceneError(location_of(item), dotted(key), "expected a string, got " + type_name(item));
+    out.push_back(*item.value<std::string>());
+  }
+  return out;
+}
+
+std::vector<double> TableReader::numbers(std::string_view key, Range range) {
+  const toml::node& n = required(key);
+  const toml::array* a = n.as_array();
+  if (!a || a->empty()) throw SceneError(location_of(n), dotted(key), "expected a non-empty array of numbers");
+  std::vector<double> out;
+  for (const toml::node& item : *a) out.push_back(checked(key, item, range));
+  return out;
+}
+
 TableReader TableReader::table(std::string_view key) {
   const toml::node& n = required(key);
   if (!n.is_table()) throw SceneError(location_of(n), dotted(key), "expected a table, got " + type_name(n));

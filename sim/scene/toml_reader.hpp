@@ -55,6 +55,11 @@ class TableReader {
   Vec2 vec2_or(std::string_view key, Vec2 fallback, Range range = {});
   std::array<std::string, 2> string_pair(std::string_view key);
   std::vector<Vec2> points(std::string_view key, std::size_t min_count);
+  // A string or an array of strings (one or more), as a list.
+  std::vector<std::string> strings(std::string_view key);
+  std::vector<double> numbers(std::string_view key, Range range = {});
+  // The raw value, marked as used, for readers of free-form values (a study's overrides).
+  const toml::node& node(std::string_view key) { return required(key); }
 
   TableReader table(std::string_view key);
   std::optional<TableReader> optional_table(std::string_view key);
