@@ -72,7 +72,7 @@ def main():
         rows.append(row)
     tmp = args.output + ".tmp"
     with open(tmp, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=header, restval="")
+        w = csv.DictWriter(f, fieldnames=header, restval="", lineterminator="\n")
         w.writeheader()
         w.writerows(rows)
     os.replace(tmp, args.output)

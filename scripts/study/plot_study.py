@@ -144,7 +144,7 @@ def main():
         plt.close(fig)
         print(f"plot_study: wrote {plot['name']}.png")
     with open(plan["name"] + "_fits.csv", "w", newline="") as f:
-        w = csv.writer(f)
+        w = csv.writer(f, lineterminator="\n")
         w.writerow(["plot", "curve", "fit", "a", "b", "c", "r2", "points", "note"])
         w.writerows(fit_rows)
 
