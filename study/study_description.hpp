@@ -31,6 +31,7 @@ struct AxisValue {
 
 struct Axis {
   std::string name;
+  std::string key;   // the scene key its bare values set; empty for tables of keys
   std::string unit;
   std::vector<AxisValue> values;
   SourceLocation where;

@@ -52,6 +52,7 @@ Axis read_axis(TableReader& t, const std::vector<Axis>& earlier) {
   a.unit = t.string_or("unit", "");
   const bool keyed = t.has("key");
   const std::string key = keyed ? t.string("key") : "";
+  a.key = key;
   const toml::node& values = t.node("values");
   const toml::array* list = values.as_array();
   if (!list) t.fail("values", "expected an array of values");

@@ -24,6 +24,7 @@
 #include "settings/render_options.hpp"
 #include "study/study_cases.hpp"
 #include "study/study_loader.hpp"
+#include "study/study_options.hpp"
 #include "study/study_plan.hpp"
 
 namespace bsmpm::cli {
@@ -34,7 +35,8 @@ namespace {
 
 const char* kHelp =
     "usage: bsmpm study STUDY.toml [--dir OUT] [--cores N] [--slurm [--partition P] [--time-limit MIN]\n"
-    "                   [--jobs N]] [--dry-run] [--keep-going] [--unlock] [--quiet]\n"
+    "                   [--jobs N]] [--set KEY=VALUE ...] [--axis NAME=V1,V2,...] [--dry-run]\n"
+    "                   [--keep-going] [--unlock] [--quiet]\n"
     "\n"
     "Validates the study (every case's scene is loaded with its overrides), writes its cases to\n"
     "OUT/plan.json and runs the missing ones through Snakemake, one job per case, then writes\n"
@@ -49,6 +51,9 @@ const char* kHelp =
     "  --partition P      Slurm partition (default: the profile's)\n"
     "  --time-limit MIN   Slurm time limit per case in minutes (default: the profile's)\n"
     "  --jobs N           Slurm jobs queued at once (default 100)\n"
+    "  --set KEY=VALUE    one more override for every case, before the axes' values\n"
+    "                     (repeatable), e.g. --set time.end=0.3 to try a study out\n"
+    "  --axis NAME=V,...  other values for an axis that has a key, e.g. --axis grid=0.01,0.008\n"
     "  --dry-run          validate and show which cases would run; run nothing\n"
     "  --keep-going       run the other cases when one fails (the CSV then marks it failed)\n"
     "  --unlock           release OUT after a study that was killed, then stop\n"
@@ -127,7 +132,7 @@ std::string failure_reason(const fs::path& log) {
 
 int command_study(const std::vector<std::string>& argv) {
   Arguments args(argv, {"--help", "--slurm", "--dry-run", "--keep-going", "--unlock", "--quiet"},
-                 {"--dir", "--cores", "--partition", "--time-limit", "--jobs"});
+                 {"--dir", "--cores", "--partition", "--time-limit", "--jobs"}, {"--set", "--axis"});
   if (args.flag("--help")) {
     std::fputs(kHelp, stdout);
     return kOk;
@@ -141,7 +146,8 @@ int command_study(const std::vector<std::string>& argv) {
   if (cores < 1 || jobs < 1 || time_limit < 0) throw UsageError("--cores and --jobs must be >= 1, --time-limit >= 0");
 
   // Everything is validated before anything is written.
-  const StudyDescription study = load_study(args.positional()[0]);
+  StudyDescription study = load_study(args.positional()[0]);
+  apply_study_options(study, args.all("--set"), args.all("--axis"));
   std::string scene_text;
   {
     std::ifstream in(study.scene_path, std::ios::binary);
