@@ -1,13 +1,12 @@
 #include "study/study_cases.hpp"
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "probes/front_probe.hpp"
 #include "probes/material_point.hpp"
 #include "probes/pressure_probe.hpp"
 #include "scene/overrides.hpp"
+#include "scene/toml_reader.hpp"
 
 namespace bsmpm {
 
@@ -61,14 +60,6 @@ const Assignment* assignment_for(const StudyCase& c, const std::string& key) {
   return found;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open the scene file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 std::string hash_text(const std::string& text) {
@@ -88,8 +79,7 @@ std::vector<std::string> StudyCase::overrides() const {
   return out;
 }
 
-std::vector<StudyCase> expand_cases(const StudyDescription& study, const std::string& scene_text,
-                                    const std::string& version) {
+std::vector<StudyCase> expand_cases(const StudyDescription& study, const std::string& version) {
   std::vector<StudyCase> cases;
   std::vector<std::size_t> index(study.axes.size(), 0);
   for (std::size_t n = 0; n < study.case_count(); ++n) {
@@ -100,7 +90,7 @@ std::vector<StudyCase> expand_cases(const StudyDescription& study, const std::st
       const auto& v = study.axes[a].values[index[a]].assignments;
       c.assignments.insert(c.assignments.end(), v.begin(), v.end());
     }
-    std::string identity = scene_text + '\0';
+    std::string identity = study.scene_text + '\0';
     for (const auto& o : c.overrides()) identity += o + '\0';
     c.key = hash_text(identity + version);
     cases.push_back(std::move(c));
@@ -122,19 +112,12 @@ std::string describe_case(const StudyDescription& study, const StudyCase& c) {
 
 void validate_cases(const StudyDescription& study, const std::vector<StudyCase>& cases,
                     const std::vector<SceneExtension>& extensions) {
-  const std::string text = read_file(study.scene_path);
+  const std::string& text = study.scene_text;
   for (const auto& c : cases) {
     const std::string case_text = "case " + describe_case(study, c);
     // Each override alone first, so that a malformed one (an index past the end, a key
     // under a value) is pinned to its own line.
-    toml::table root;
-    try {
-      root = toml::parse(text, study.scene_path);
-    } catch (const toml::parse_error& e) {
-      SourceLocation where{study.scene_path, static_cast<int>(e.source().begin.line),
-                           static_cast<int>(e.source().begin.column)};
-      throw SceneError(where, "", "TOML syntax error: " + std::string(e.description()));
-    }
+    toml::table root = parse_toml(text, study.scene_path);
     for (const auto& a : c.assignments) {
       try {
         apply_override(root, a.text());

@@ -19,8 +19,7 @@ struct StudyCase {
 
 // Every case, keyed by a hash of the base scene's text, its overrides and `version` (the
 // program's): the same case of another study, or of the same study rerun, finds its run.
-std::vector<StudyCase> expand_cases(const StudyDescription& study, const std::string& scene_text,
-                                    const std::string& version);
+std::vector<StudyCase> expand_cases(const StudyDescription& study, const std::string& version);
 
 // Loads the base scene with each case's overrides (loading rejects unknown keys and values
 // out of range) and checks that the metrics' and plots' probes and columns exist. Errors

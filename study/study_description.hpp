@@ -88,6 +88,7 @@ struct StudyDescription {
   std::string name;
   std::string title;
   std::string scene_path;  // the base scene, resolved against the study file's folder
+  std::string scene_text;  // its text as read
   int threads = 1;         // per case
   std::vector<Assignment> defaults;
   SensorModel sensor;

@@ -103,13 +103,7 @@ SensorModel read_sensor(TableReader t) {
 }  // namespace
 
 StudyDescription load_study_text(const std::string& text, const std::string& path) {
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    SourceLocation where{path, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column)};
-    throw SceneError(where, "", "TOML syntax error: " + std::string(e.description()));
-  }
+  toml::table root = parse_toml(text, path);
   const fs::path dir = fs::absolute(path).parent_path();
   StudyDescription s;
   s.path = fs::absolute(path).lexically_normal().string();
@@ -122,7 +116,9 @@ StudyDescription load_study_text(const std::string& text, const std::string& pat
     s.title = st.string_or("title", s.name);
     const std::string scene = st.string("scene");
     s.scene_path = (dir / scene).lexically_normal().string();
-    if (!fs::is_regular_file(s.scene_path)) st.fail("scene", "no scene file " + s.scene_path);
+    std::ifstream scene_file(s.scene_path, std::ios::binary);
+    if (!fs::is_regular_file(s.scene_path) || !scene_file) st.fail("scene", "no scene file " + s.scene_path);
+    s.scene_text.assign(std::istreambuf_iterator<char>(scene_file), std::istreambuf_iterator<char>());
     s.threads = static_cast<int>(st.integer_or("threads", 1, 1, 1024));
     if (st.has("set")) s.defaults = read_set_table(st, "set");
     st.finish();

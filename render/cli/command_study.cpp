@@ -148,12 +148,7 @@ int command_study(const std::vector<std::string>& argv) {
   // Everything is validated before anything is written.
   StudyDescription study = load_study(args.positional()[0]);
   apply_study_options(study, args.all("--set"), args.all("--axis"));
-  std::string scene_text;
-  {
-    std::ifstream in(study.scene_path, std::ios::binary);
-    scene_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  const std::vector<StudyCase> cases = expand_cases(study, scene_text, version_line());
+  const std::vector<StudyCase> cases = expand_cases(study, version_line());
   validate_cases(study, cases, {render::render_scene_extension()});
 
   const fs::path out = fs::absolute(args.option("--dir", "runs/" + study.name)).lexically_normal();

@@ -13,10 +13,10 @@ namespace bsmpm {
 
 class JsonWriter {
  public:
-  JsonWriter& begin_object();
-  JsonWriter& end_object();
-  JsonWriter& begin_array();
-  JsonWriter& end_array();
+  JsonWriter& begin_object() { return open('{'); }
+  JsonWriter& end_object() { return close('}'); }
+  JsonWriter& begin_array() { return open('['); }
+  JsonWriter& end_array() { return close(']'); }
   JsonWriter& key(const std::string& name);  // inside an object, before its value
   JsonWriter& value(const std::string& text);
   JsonWriter& value(const char* text) { return value(std::string(text)); }
@@ -32,6 +32,8 @@ class JsonWriter {
 
  private:
   void separate();  // the comma and line break before an element
+  JsonWriter& open(char bracket);
+  JsonWriter& close(char bracket);
   std::ostringstream out_;
   std::vector<bool> first_;  // per open container: no element written yet
   bool after_key_ = false;

@@ -64,6 +64,15 @@ std::string quoted_list(const std::vector<std::string>& options) {
 
 }  // namespace
 
+toml::table parse_toml(const std::string& text, const std::string& path) {
+  try {
+    return toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    SourceLocation where{path, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column)};
+    throw SceneError(where, "", "TOML syntax error: " + std::string(e.description()));
+  }
+}
+
 SourceLocation location_of(const toml::node& node) { return location_of_region(node.source()); }
 SourceLocation location_of(const toml::key& key) { return location_of_region(key.source()); }
 

@@ -18,6 +18,9 @@
 
 namespace bsmpm {
 
+// Parses TOML text; a syntax error is a SceneError at its file:line:column.
+toml::table parse_toml(const std::string& text, const std::string& path);
+
 SourceLocation location_of(const toml::node& node);
 SourceLocation location_of(const toml::key& key);
 

@@ -31,7 +31,7 @@ const std::string kAxis =
 SceneError study_error(const std::string& text) {
   try {
     const StudyDescription s = load_study_text(text, kPath);
-    validate_cases(s, expand_cases(s, "scene text", "v1"));
+    validate_cases(s, expand_cases(s, "v1"));
   } catch (const SceneError& e) {
     return e;
   }
@@ -47,7 +47,7 @@ TEST_CASE("the tiny study expands to four keyed cases, the last axis fastest", "
   CHECK(s.axes[0].values[1].label == "300 mm");
   CHECK(s.axes[0].values[1].coordinate == 0.3);
   CHECK(s.axes[1].values[0].assignments[0].text() == "grid.cell_size=0.025");
-  const auto cases = expand_cases(s, "scene text", "bsmpm 1");
+  const auto cases = expand_cases(s, "bsmpm 1");
   REQUIRE(cases.size() == 4);
   CHECK(cases[1].value_index == std::vector<std::size_t>{0, 1});
   CHECK(cases[2].value_index == std::vector<std::size_t>{1, 0});
@@ -61,9 +61,11 @@ TEST_CASE("the tiny study expands to four keyed cases, the last axis fastest", "
   // Keys: distinct, stable, and new for another scene text or program version.
   for (std::size_t i = 0; i < cases.size(); ++i)
     for (std::size_t j = i + 1; j < cases.size(); ++j) CHECK(cases[i].key != cases[j].key);
-  CHECK(expand_cases(s, "scene text", "bsmpm 1")[2].key == cases[2].key);
-  CHECK(expand_cases(s, "scene text", "bsmpm 2")[2].key != cases[2].key);
-  CHECK(expand_cases(s, "other scene", "bsmpm 1")[2].key != cases[2].key);
+  CHECK(expand_cases(s, "bsmpm 1")[2].key == cases[2].key);
+  CHECK(expand_cases(s, "bsmpm 2")[2].key != cases[2].key);
+  StudyDescription edited = s;
+  edited.scene_text += "\n# a comment\n";
+  CHECK(expand_cases(edited, "bsmpm 1")[2].key != cases[2].key);
   CHECK(describe_case(s, cases[2]) == "H = 300 mm, grid = 0.025");
 }
 
