@@ -59,7 +59,8 @@ const char* kHelp =
     "  --unlock           release OUT after a study that was killed, then stop\n"
     "  --quiet            no progress line\n"
     "\n"
-    "exit status: 0 every case done, 1 a case or the workflow failed, 2 bad study or usage\n";
+    "exit status: 0 every case done, 1 a case or the workflow failed, 2 bad study or usage,\n"
+    "130 interrupted (the same command resumes)\n";
 
 std::string workflow_dir() {
   if (const char* env = std::getenv("BSMPM_WORKFLOW_DIR")) return env;
@@ -222,6 +223,11 @@ int command_study(const std::vector<std::string>& argv) {
   report(true);
 
   const StudyStatus after = progress.poll();
+  if (after.interrupted > 0) {
+    std::fprintf(stderr, "bsmpm: the study was interrupted (%d cases stopped, %d done); the same command resumes it\n",
+                 after.interrupted, after.done);
+    return kInterrupted;
+  }
   for (const auto& c : cases) {
     if (progress.state(c.key) != CaseState::kFailed) continue;
     const fs::path case_log = out / "cases" / c.key / "run.log";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 
 #include "cli/progress.hpp"
 #include "io/run_summary.hpp"
@@ -26,7 +27,14 @@ bool StudyProgress::newer_than_start(const fs::path& p) const {
 CaseState StudyProgress::state(const std::string& key) const {
   const fs::path dir = cases_ / key;
   if (fs::exists(dir / "metrics.json")) return CaseState::kDone;
-  if (newer_than_start(dir / "failed")) return CaseState::kFailed;
+  if (newer_than_start(dir / "failed")) {
+    // The marker holds "exit status N"; 130 is a run stopped by Ctrl-C: it resumes.
+    std::ifstream marker(dir / "failed");
+    std::string word1, word2;
+    int status = 0;
+    marker >> word1 >> word2 >> status;
+    return status == 130 ? CaseState::kInterrupted : CaseState::kFailed;
+  }
   if (newer_than_start(dir / "started")) return CaseState::kRunning;
   return CaseState::kWaiting;
 }
@@ -71,6 +79,7 @@ StudyStatus StudyProgress::poll() {
         running_elapsed.push_back(ec ? 0.0 : std::chrono::duration<double>(now - started).count());
         break;
       }
+      case CaseState::kInterrupted: ++s.interrupted; break;
       default: ++s.waiting;
     }
   }

@@ -1,7 +1,7 @@
 // The state of a running study as its case directories show it (docs/studies.md,
-// "Progress"): done (metrics.json), failed (a `failed` marker newer than this invocation),
-// running (a `started` marker newer than it), waiting; and an ETA from the mean wall time
-// of the finished cases.
+// "Progress"): done (metrics.json), failed (a `failed` marker newer than this invocation;
+// interrupted if it says exit status 130), running (a `started` marker newer than it),
+// waiting; and an ETA from the mean wall time of the finished cases.
 #pragma once
 
 #include <chrono>
@@ -12,10 +12,10 @@
 
 namespace bsmpm::cli {
 
-enum class CaseState { kWaiting, kRunning, kDone, kFailed };
+enum class CaseState { kWaiting, kRunning, kDone, kFailed, kInterrupted };
 
 struct StudyStatus {
-  int done = 0, reused = 0, running = 0, failed = 0, waiting = 0;
+  int done = 0, reused = 0, running = 0, failed = 0, waiting = 0, interrupted = 0;
   double eta_seconds = -1.0;  // unknown until a case has finished
   std::vector<std::string> failed_keys;
 };
