@@ -135,18 +135,32 @@ void SplatBuilder::add_wall(const Vec2& normal, double distance, double radius) 
 
 void SplatBuilder::add_neighbour(const Vec2& offset, double distance) {
   if (wall_count_ > 0) add_images(offset);
-  Directions along, across;
-  components(offset, along, across);
-  add_material(along, static_cast<float>(distance));
-  if (!(distance > 0.0)) return;  // a coincident neighbour bounds no cell
-  // The particle's Voronoi cell in sector k (the points within 22.5 degrees of u_k): a
-  // neighbour at angle g from u_k lies within 22.5 + g degrees of every point p of the
-  // sector, and p is nearer to the particle than to it only if
+  if (!(distance > 0.0)) return;  // a coincident neighbour reaches nowhere and bounds no cell
+  // What add_material does, and the particle's Voronoi cell in sector k (the points within
+  // 22.5 degrees of u_k): a neighbour at angle g from u_k lies within 22.5 + g degrees of
+  // every point p of the sector, and p is nearer to the particle than to it only if
   // |p| <= distance / (2 cos(22.5 + g)): a bound when 22.5 + g < 90 degrees. Kept as its
   // inverse, the largest over the neighbours (negative, so ignored, beyond 90 degrees).
-  const float scale = static_cast<float>(2.0 / (distance * distance));
-  Directions cell = cell_;
-  for (int k = 0; k < 8; ++k) cell[k] = larger(cell[k], scale * (kSectorCos * along[k] - kSectorSin * across[k]));
+  // Written out for u_q and u_(q+4) = -u_q together (the hottest loop of the renderer):
+  // along u_(q+4) is minus along u_q, across the same.
+  const float fx = static_cast<float>(offset.dot(e1_)), fy = static_cast<float>(offset.dot(e2_));
+  const float a = kHalfSqrt2 * (fx + fy), b = kHalfSqrt2 * (fy - fx);
+  const std::array<float, 4> along{fx, a, fy, b};
+  const std::array<float, 4> across{std::abs(fy), std::abs(b), std::abs(fx), std::abs(a)};
+  const float inverse = 1.0f / static_cast<float>(distance), scale = 2.0f * inverse * inverse;
+  Directions ahead = ahead_, side = side_, cell = cell_;
+  for (int q = 0; q < 4; ++q) {
+    const float forward = along[q], backward = -along[q];
+    const float cos_forward = forward * inverse, cos_backward = backward * inverse;
+    ahead[q] = larger(ahead[q], cos_forward >= kHalfSqrt2 ? forward : 0.0f);
+    ahead[q + 4] = larger(ahead[q + 4], cos_backward >= kHalfSqrt2 ? backward : 0.0f);
+    side[q] = larger(side[q], cos_forward < kHalfSqrt2 ? cos_forward : 0.0f);
+    side[q + 4] = larger(side[q + 4], cos_backward < kHalfSqrt2 ? cos_backward : 0.0f);
+    cell[q] = larger(cell[q], scale * (kSectorCos * forward - kSectorSin * across[q]));
+    cell[q + 4] = larger(cell[q + 4], scale * (kSectorCos * backward - kSectorSin * across[q]));
+  }
+  ahead_ = ahead;
+  side_ = side;
   cell_ = cell;
 }
 
