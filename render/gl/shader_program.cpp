@@ -10,31 +10,35 @@ namespace bsmpm::render {
 
 namespace {
 
-// The info log of a shader or a program (the two have the same pair of query functions).
-std::string info_log(GLuint object, void (*get_iv)(GLuint, GLenum, GLint*),
-                     void (*get_log)(GLuint, GLsizei, GLsizei*, GLchar*)) {
+// Shaders and programs have the same pair of query functions and a delete function each.
+using GetIv = void (*)(GLuint, GLenum, GLint*);
+using GetLog = void (*)(GLuint, GLsizei, GLsizei*, GLchar*);
+
+// Deletes `object` and throws `failure` with GL's log when its `status` is not set.
+void require(GLuint object, GLenum status, GetIv get_iv, GetLog get_log, void (*destroy)(GLuint),
+             const std::string& failure) {
+  GLint ok = 0;
+  get_iv(object, status, &ok);
+  if (ok) return;
   GLint length = 0;
   get_iv(object, GL_INFO_LOG_LENGTH, &length);
-  if (length <= 0) return "(no log)";
-  std::string log(static_cast<std::size_t>(length), '\0');
-  GLsizei written = 0;
-  get_log(object, length, &written, log.data());
-  log.resize(static_cast<std::size_t>(written));
-  return log;
+  std::string log = "(no log)";
+  if (length > 0) {
+    log.assign(static_cast<std::size_t>(length), '\0');
+    GLsizei written = 0;
+    get_log(object, length, &written, log.data());
+    log.resize(static_cast<std::size_t>(written));
+  }
+  destroy(object);
+  throw Error(failure + ": " + log);
 }
 
 GLuint compile(const std::string& what, GLenum stage, const char* source) {
   const GLuint shader = glCreateShader(stage);
   glShaderSource(shader, 1, &source, nullptr);
   glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
-    glDeleteShader(shader);
-    throw Error("OpenGL: " + what + " (" + (stage == GL_VERTEX_SHADER ? "vertex" : "fragment") +
-                " stage) does not compile: " + log);
-  }
+  require(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, glDeleteShader,
+          "OpenGL: " + what + " (" + (stage == GL_VERTEX_SHADER ? "vertex" : "fragment") + " stage) does not compile");
   return shader;
 }
 
@@ -58,13 +62,7 @@ ShaderProgram::ShaderProgram(const std::string& what, const char* vertex_source,
   glLinkProgram(id_);
   glDeleteShader(vertex);  // stay alive while attached
   glDeleteShader(fragment);
-  GLint ok = 0;
-  glGetProgramiv(id_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    const std::string log = info_log(id_, glGetProgramiv, glGetProgramInfoLog);
-    glDeleteProgram(id_);
-    throw Error("OpenGL: " + what + " does not link: " + log);
-  }
+  require(id_, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, glDeleteProgram, "OpenGL: " + what + " does not link");
 }
 
 ShaderProgram::~ShaderProgram() { glDeleteProgram(id_); }
