@@ -106,7 +106,7 @@ TEST_CASE("A synthetic frame renders with the colour map's ends at known pixels"
   }
 }
 
-TEST_CASE("Values outside the colour range take the end colours; missing values are grey", "[render][figure]") {
+TEST_CASE("Values outside the colour range take the end colours and missing values are grey", "[render][figure]") {
   FrameParticles frame;
   const double h = 0.01;
   for (const Vec2& p : test::lattice({0.0, 0.0}, {0.2, 0.2}, h)) {

@@ -87,7 +87,7 @@ TEST_CASE("A lone particle's splat is its margin all round", "[render][splat]") 
   CHECK(shapes[0].reach == Approx(0.0075 / std::cos(kPi / 8.0)).epsilon(1e-5));
 }
 
-TEST_CASE("Inside a block a splat covers its Voronoi cell; at an edge it stops half a spacing out",
+TEST_CASE("A splat covers its Voronoi cell inside a block and stops half a spacing out at its edges",
           "[render][splat]") {
   const double h = 0.01;
   const std::vector<Vec2> points = block(20, 12, h);
