@@ -260,10 +260,12 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
     s.solver.mass_cutoff_ratio = solver->number_or("mass_cutoff", s.solver.mass_cutoff_ratio, Range::closed(0.0, 1.0));
     s.solver.sort_interval = static_cast<int>(solver->integer_or("sort_interval", 50, 0, 1000000));
     if (solver->boolean_or("smooth_fluid_volume", false)) s.solver.fluid_volume = SolverSettings::FluidVolume::kSmoothed;
-    const std::string volume = solver->choice_or("fluid_volume", "", {"", "particle", "smoothed", "projected"});
-    if (volume == "particle") s.solver.fluid_volume = SolverSettings::FluidVolume::kParticle;
-    if (volume == "smoothed") s.solver.fluid_volume = SolverSettings::FluidVolume::kSmoothed;
-    if (volume == "projected") s.solver.fluid_volume = SolverSettings::FluidVolume::kProjected;
+    if (solver->has("fluid_volume")) {  // wins over smooth_fluid_volume
+      const std::string volume = solver->choice("fluid_volume", {"particle", "smoothed", "projected"});
+      s.solver.fluid_volume = volume == "particle"   ? SolverSettings::FluidVolume::kParticle
+                              : volume == "smoothed" ? SolverSettings::FluidVolume::kSmoothed
+                                                     : SolverSettings::FluidVolume::kProjected;
+    }
     s.solver.shifting = solver->number_or("particle_shifting", 0.0, Range::closed(0.0, 0.5));
   }
   std::map<std::string, Material> materials;
