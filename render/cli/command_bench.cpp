@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <thread>
 
 #include "cli/arguments.hpp"
@@ -17,6 +18,25 @@
 namespace bsmpm::cli {
 
 namespace {
+
+// `text` as a JSON string literal: quotes, backslashes and control characters escaped.
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char code[8];
+      std::snprintf(code, sizeof code, "\\u%04x", static_cast<unsigned>(c));
+      out += code;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
 const char* kHelp =
     "usage: bsmpm bench SCENE.toml [--steps N] [--warmup N] [--threads N] [--set KEY=VALUE ...] [--json]\n"
     "\n"
@@ -49,11 +69,11 @@ int command_bench(const std::vector<std::string>& argv) {
   const double rate = n * steps / wall;
   const unsigned cores = std::thread::hardware_concurrency();
   if (args.flag("--json")) {
-    std::printf("{\"scene\": \"%s\", \"particles\": %zu, \"order\": %d, \"cells\": [%d, %d], \"cell_size\": [%g, %g], "
+    std::printf("{\"scene\": %s, \"particles\": %zu, \"order\": %d, \"cells\": [%d, %d], \"cell_size\": [%g, %g], "
                 "\"threads\": %d, \"cores\": %u, \"steps\": %ld, \"seconds\": %.6g, \"seconds_per_step\": %.6g, "
                 "\"particle_steps_per_second\": %.6g}\n",
-                scene.path.c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(), threads, cores,
-                steps, wall, per_step, rate);
+                json_string(scene.path).c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(),
+                threads, cores, steps, wall, per_step, rate);
   } else {
     std::printf("scene                %s\n", scene.path.c_str());
     std::printf("grid                 %d x %d cells of %.4g mm, order %d\n", g.cells_x, g.cells_y, g.cell_size.x() * 1e3,
