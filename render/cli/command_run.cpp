@@ -3,8 +3,10 @@
 // keeps everything written so far.
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <thread>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
@@ -12,6 +14,8 @@
 #include "cli/progress.hpp"
 #include "cli/scene_summary.hpp"
 #include "core/error.hpp"
+#include "core/version.hpp"
+#include "io/run_summary.hpp"
 #include "io/run_writer.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
@@ -32,6 +36,7 @@ const char* kHelp =
     "                  volume), probe series, grid, bodies and provenance (docs/output-format.md)\n"
     "  DIR/run.xdmf    the frames for ParaView\n"
     "  DIR/NAME.csv    one table per probe, with a header row\n"
+    "  DIR/summary.json  steps, wall time, threads, particles, peak memory, exit status\n"
     "\n"
     "options\n"
     "  --out DIR          output directory (created; must not hold another run)\n"
@@ -56,9 +61,29 @@ void prepare_directory(const fs::path& dir, bool force) {
     for (const auto& entry : fs::directory_iterator(dir)) {
       const auto ext = entry.path().extension();
       const auto name = entry.path().filename();
-      if (name == "run.h5" || name == "run.xdmf" || ext == ".csv" || name == "run.xdmf.tmp") fs::remove(entry.path());
+      if (name == "run.h5" || name == "run.xdmf" || ext == ".csv" || name == "run.xdmf.tmp" ||
+          name == "summary.json") fs::remove(entry.path());
     }
   }
+}
+
+// The summary of a run that ended (or stopped) after `steps` steps.
+RunSummary summarize(const Simulation& sim, const RunWriter& writer, const SceneDescription& scene, int threads,
+                     long steps, double wall_seconds) {
+  RunSummary s;
+  s.steps = steps;
+  s.time = sim.time();
+  s.end_time = scene.time.end;
+  s.wall_seconds = wall_seconds;
+  s.threads = threads;
+  s.cores = static_cast<int>(std::thread::hardware_concurrency());
+  s.particles = sim.particles().size();
+  s.particle_steps_per_second = steps * static_cast<double>(s.particles) / std::max(wall_seconds, 1e-9);
+  s.peak_memory_mb = peak_resident_memory_mb();
+  s.frames = writer.frames_written();
+  s.program_version = kVersion;
+  s.git_revision = kGitRevision;
+  return s;
 }
 
 }  // namespace
@@ -119,11 +144,21 @@ int command_run(const std::vector<std::string>& argv) {
   catch_interruptions();
 
   RunOutcome outcome;
+  const auto started = std::chrono::steady_clock::now();
+  // A failed run's summary: the steps it made and its wall time, no time-step range.
+  auto write_failure_summary = [&](const std::string& status, int exit_status) {
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    RunSummary s = summarize(*sim, *writer, scene, threads, sim->step_count(), wall);
+    s.status = status;
+    s.exit_status = exit_status;
+    write_run_summary(dir.string(), s);
+  };
   try {
     outcome = run_to_end(*sim, scene.time, scene.frame_interval, hooks);
   } catch (const NumericalError& e) {
     if (tty && !args.flag("--quiet")) std::fputc('\n', stderr);
     writer->finish(std::string("failed: ") + e.what(), *sim, 0.0);
+    write_failure_summary(std::string("failed: ") + e.what(), kUnstable);
     std::fprintf(stderr, "bsmpm: error: %s\nbsmpm: the %d frames written before the failure are in %s\n", e.what(),
                  writer->frames_written(), writer->h5_path().c_str());
     return kUnstable;
@@ -133,6 +168,7 @@ int command_run(const std::vector<std::string>& argv) {
     if (tty && !args.flag("--quiet")) std::fputc('\n', stderr);
     try {
       writer->finish(std::string("failed: ") + e.what(), *sim, 0.0);
+      write_failure_summary(std::string("failed: ") + e.what(), kFailure);
     } catch (const std::exception&) {
       // The file itself is what failed; main reports the first error.
     }
@@ -140,6 +176,14 @@ int command_run(const std::vector<std::string>& argv) {
   }
   if (tty && !args.flag("--quiet")) std::fputc('\n', stderr);
   writer->finish(outcome.interrupted ? "interrupted" : "completed", *sim, outcome.last_dt);
+  {
+    RunSummary s = summarize(*sim, *writer, scene, threads, outcome.steps, outcome.wall_seconds);
+    s.status = outcome.interrupted ? "interrupted" : "completed";
+    s.exit_status = outcome.interrupted ? kInterrupted : kOk;
+    s.min_dt = outcome.min_dt;
+    s.max_dt = outcome.max_dt;
+    write_run_summary(dir.string(), s);
+  }
 
   const double steps_per_s = outcome.steps / std::max(outcome.wall_seconds, 1e-9);
   std::printf("%s  %ld steps in %.1f s: %.1f steps/s, %.3g particle-steps/s on %d threads; dt %.3g .. %.3g s\n",
@@ -150,7 +194,7 @@ int command_run(const std::vector<std::string>& argv) {
   std::printf("wrote    %s (%d frames), %s/run.xdmf", writer->h5_path().c_str(), writer->frames_written(),
               dir.string().c_str());
   for (const auto& p : sim->probes()) std::printf(", %s/%s.csv", dir.string().c_str(), p->name().c_str());
-  std::printf("\n");
+  std::printf(", %s/summary.json\n", dir.string().c_str());
   if (outcome.interrupted) {
     std::fprintf(stderr, "bsmpm: interrupted at t = %.5f s; the frames written so far are kept\n", sim->time());
     return kInterrupted;

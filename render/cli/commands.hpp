@@ -15,5 +15,7 @@ int command_bench(const std::vector<std::string>& args);
 int command_render(const std::vector<std::string>& args);
 int command_movie(const std::vector<std::string>& args);
 int command_compare(const std::vector<std::string>& args);
+int command_study(const std::vector<std::string>& args);
+int command_metrics(const std::vector<std::string>& args);
 
 }  // namespace bsmpm::cli

@@ -25,6 +25,10 @@ const char* kHelp =
     "                          the run as an H.264 movie, in slow motion\n"
     "  compare A.png B.png     image difference metrics (max, RMS, PSNR, SSIM) and a\n"
     "                          diff image; fails beyond a --tolerance\n"
+    "  study STUDY.toml        run a parameter study (one job per case) through Snakemake,\n"
+    "                          locally or on Slurm; a CSV of metrics and plots\n"
+    "  metrics RUN_DIR         a run's metrics as a study defines them, or a probe's series\n"
+    "                          through the sensor model (resampled, moving average)\n"
     "\n"
     "  bsmpm COMMAND --help    the options of a command\n"
     "  bsmpm --version         program version\n";
@@ -51,6 +55,8 @@ int main(int argc, char** argv) {
     if (command == "render") return cli::command_render(args);
     if (command == "movie") return cli::command_movie(args);
     if (command == "compare") return cli::command_compare(args);
+    if (command == "study") return cli::command_study(args);
+    if (command == "metrics") return cli::command_metrics(args);
     throw UsageError("unknown command '" + command + "' (see bsmpm --help)");
   } catch (const SceneError& e) {
     std::fprintf(stderr, "bsmpm: error: %s\n", e.what());

@@ -76,13 +76,7 @@ void validate_render_table(TableReader& table) { read_render_table(table); }
 SceneExtension render_scene_extension() { return SceneExtension{"render", validate_render_table}; }
 
 RenderOptions render_options_from_scene(const std::string& scene_text, const std::string& source) {
-  toml::table root;
-  try {
-    root = toml::parse(scene_text, source);
-  } catch (const toml::parse_error& e) {
-    SourceLocation where{source, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column)};
-    throw SceneError(where, "", "TOML syntax error: " + std::string(e.description()));
-  }
+  const toml::table root = parse_toml(scene_text, source);
   const toml::node* node = root.get("render");
   if (!node) return {};
   if (!node->is_table()) throw SceneError(location_of(*node), "render", "expected a table");

@@ -1,7 +1,9 @@
 // printf-style formatting into a std::string, for messages and descriptions of any length
-// (g++ 12 has no std::format). The compiler checks the arguments against the format.
+// (g++ 12 has no std::format). The compiler checks the arguments against the format. And
+// the shortest round-trip text of a double, for files other programs read back.
 #pragma once
 
+#include <charconv>
 #include <cstdarg>
 #include <cstdio>
 #include <string>
@@ -18,6 +20,12 @@ __attribute__((format(printf, 1, 2))) inline std::string format(const char* patt
   if (length > 0) std::vsnprintf(out.data(), out.size() + 1, pattern, again);
   va_end(again);
   return out;
+}
+
+// The shortest text that reads back as the same double (std::to_chars): 0.3, 1e-05, 2.
+inline std::string shortest(double x) {
+  char digits[32];  // to_chars writes at most 24 characters for a double
+  return std::string(digits, std::to_chars(digits, digits + sizeof digits, x).ptr);
 }
 
 }  // namespace bsmpm

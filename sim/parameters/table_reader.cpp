@@ -64,6 +64,15 @@ std::string quoted_list(const std::vector<std::string>& options) {
 
 }  // namespace
 
+toml::table parse_toml(const std::string& text, const std::string& path) {
+  try {
+    return toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    SourceLocation where{path, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column)};
+    throw SceneError(where, "", "TOML syntax error: " + std::string(e.description()));
+  }
+}
+
 SourceLocation location_of(const toml::node& node) { return location_of_region(node.source()); }
 SourceLocation location_of(const toml::key& key) { return location_of_region(key.source()); }
 
@@ -202,6 +211,28 @@ std::vector<Vec2> TableReader::points(std::string_view key, std::size_t min_coun
       throw SceneError(location_of(item), dotted(key), "each point must be [x, y]");
     out.emplace_back(checked(key, *pt->get(0), {}), checked(key, *pt->get(1), {}));
   }
+  return out;
+}
+
+std::vector<std::string> TableReader::strings(std::string_view key) {
+  const toml::node& n = required(key);
+  if (n.is_string()) return {*n.value<std::string>()};
+  const toml::array* a = n.as_array();
+  if (!a || a->empty()) throw SceneError(location_of(n), dotted(key), "expected a string or a non-empty array of strings");
+  std::vector<std::string> out;
+  for (const toml::node& item : *a) {
+    if (!item.is_string()) throw SceneError(location_of(item), dotted(key), "expected a string, got " + type_name(item));
+    out.push_back(*item.value<std::string>());
+  }
+  return out;
+}
+
+std::vector<double> TableReader::numbers(std::string_view key, Range range) {
+  const toml::node& n = required(key);
+  const toml::array* a = n.as_array();
+  if (!a || a->empty()) throw SceneError(location_of(n), dotted(key), "expected a non-empty array of numbers");
+  std::vector<double> out;
+  for (const toml::node& item : *a) out.push_back(checked(key, item, range));
   return out;
 }
 

@@ -18,6 +18,9 @@
 
 namespace bsmpm {
 
+// Parses TOML text; a syntax error is a SceneError at its file:line:column.
+toml::table parse_toml(const std::string& text, const std::string& path);
+
 SourceLocation location_of(const toml::node& node);
 SourceLocation location_of(const toml::key& key);
 
@@ -55,6 +58,11 @@ class TableReader {
   Vec2 vec2_or(std::string_view key, Vec2 fallback, Range range = {});
   std::array<std::string, 2> string_pair(std::string_view key);
   std::vector<Vec2> points(std::string_view key, std::size_t min_count);
+  // A string or an array of strings (one or more), as a list.
+  std::vector<std::string> strings(std::string_view key);
+  std::vector<double> numbers(std::string_view key, Range range = {});
+  // The raw value, marked as used, for readers of free-form values (a study's overrides).
+  const toml::node& node(std::string_view key) { return required(key); }
 
   TableReader table(std::string_view key);
   std::optional<TableReader> optional_table(std::string_view key);

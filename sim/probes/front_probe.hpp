@@ -17,7 +17,8 @@ class FrontProbe final : public Probe {
       : Probe(std::move(name), interval), body_(body), body_name_(std::move(body_name)),
         direction_(direction.normalized()), scales_(scales) {}
 
-  std::vector<std::string> columns() const override { return {"t", "T*", "front"}; }
+  static std::vector<std::string> column_names() { return {"t", "T*", "front"}; }
+  std::vector<std::string> columns() const override { return column_names(); }
   std::string describe() const override;
 
  protected:

@@ -34,7 +34,8 @@ class MaterialPointProbe final : public Probe {
  public:
   MaterialPointProbe(std::string name, double interval, MaterialPoint point, std::string body_name)
       : Probe(std::move(name), interval), point_(point), body_name_(std::move(body_name)) {}
-  std::vector<std::string> columns() const override { return {"t", "dx", "dy", "x", "y"}; }
+  static std::vector<std::string> column_names() { return {"t", "dx", "dy", "x", "y"}; }
+  std::vector<std::string> columns() const override { return column_names(); }
   std::string describe() const override;
 
  protected:

@@ -28,7 +28,8 @@ class PressureProbe final : public Probe {
                 PressureSensor sensor, std::vector<int> fluid_bodies, ReferenceScales scales,
                 std::string where);
 
-  std::vector<std::string> columns() const override { return {"t", "T*", "P", "P*"}; }
+  static std::vector<std::string> column_names() { return {"t", "T*", "P", "P*"}; }
+  std::vector<std::string> columns() const override { return column_names(); }
   std::string describe() const override;
 
   // Mean fluid pressure over the footprint at (centre, normal); 0 when dry.

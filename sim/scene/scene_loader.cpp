@@ -226,13 +226,7 @@ int SceneDescription::cells_y() const {
 SceneDescription load_scene_text(const std::string& text, const std::string& path,
                                  const std::vector<std::string>& overrides,
                                  const std::vector<SceneExtension>& extensions) {
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    SourceLocation where{path, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column)};
-    throw SceneError(where, "", "TOML syntax error: " + std::string(e.description()));
-  }
+  toml::table root = parse_toml(text, path);
   for (const auto& o : overrides) apply_override(root, o);
 
   SceneDescription s;

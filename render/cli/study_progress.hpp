@@ -1,0 +1,44 @@
+// The state of a running study as its case directories show it (docs/studies.md,
+// "Progress"): done (metrics.json), failed (a `failed` marker newer than this invocation;
+// interrupted if it says exit status 130), running (a `started` marker newer than it),
+// waiting; and an ETA from the mean wall time of the finished cases.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace bsmpm::cli {
+
+enum class CaseState { kWaiting, kRunning, kDone, kFailed, kInterrupted };
+
+struct StudyStatus {
+  int done = 0, reused = 0, running = 0, failed = 0, waiting = 0, interrupted = 0;
+  double eta_seconds = -1.0;  // unknown until a case has finished
+  std::vector<std::string> failed_keys;
+};
+
+class StudyProgress {
+ public:
+  // `slots`: how many cases run side by side at most (0: as many as are running).
+  StudyProgress(std::filesystem::path out_dir, std::vector<std::string> keys, int slots);
+
+  CaseState state(const std::string& key) const;
+  StudyStatus poll();
+  std::string line(const StudyStatus& s) const;  // one line of progress
+
+ private:
+  bool newer_than_start(const std::filesystem::path& p) const;
+  double wall_seconds(const std::string& key);  // from the case's summary.json, cached
+
+  std::filesystem::path cases_;
+  std::vector<std::string> keys_;
+  int slots_;
+  std::filesystem::file_time_type start_;
+  std::chrono::steady_clock::time_point start_clock_;
+  std::map<std::string, double> wall_;
+};
+
+}  // namespace bsmpm::cli

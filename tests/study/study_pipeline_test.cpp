@@ -1,0 +1,119 @@
+// The tiny study end to end through `bsmpm study` and Snakemake on local cores: its CSV,
+// a second invocation that runs nothing, a deleted case that alone runs again, a failing
+// case reported with its log while the other completes, and a bad study that runs nothing.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <map>
+
+#include "program_runner.hpp"
+#include "test_support.hpp"
+
+using namespace bsmpm;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string study_command(const std::string& study, const fs::path& out, const std::string& extra = "") {
+  return std::string(BSMPM_EXECUTABLE) + " study " + test::source_path("tests/study/" + study) + " --dir '" +
+         out.string() + "' --cores 2 " + extra;
+}
+
+// The time stamp of every case's summary.json: a case that ran again has a new one.
+std::map<std::string, fs::file_time_type> run_stamps(const fs::path& out) {
+  std::map<std::string, fs::file_time_type> stamps;
+  for (const auto& d : fs::directory_iterator(out / "cases"))
+    if (fs::exists(d.path() / "summary.json"))
+      stamps[d.path().filename().string()] = fs::last_write_time(d.path() / "summary.json");
+  return stamps;
+}
+
+}  // namespace
+
+TEST_CASE("a tiny study runs through Snakemake, resumes, and reruns only what is missing", "[study][pipeline]") {
+  const fs::path out = test::scratch_dir("tiny_local") / "out";
+  REQUIRE(test::run_command(study_command("tiny_study.toml", out), out.string() + ".1.log") == 0);
+
+  const test::Csv csv = test::read_csv(out / "tiny.csv");
+  for (const char* column : {"case", "H", "H_label", "grid", "peak_P", "peak_P_time", "peak_Pstar", "impact",
+                             "impact_star", "lowest", "cost", "wall_seconds", "steps", "particles",
+                             "peak_memory_mb", "particle_steps_per_second", "status", "run_dir"})
+    CHECK(std::find(csv.header.begin(), csv.header.end(), column) != csv.header.end());
+  REQUIRE(csv.rows.size() == 4);
+  // Rows in case order: (H, grid) = (0.15, 0.025), (0.15, 0.02), (0.3, 0.025), (0.3, 0.02).
+  for (std::size_t r = 0; r < 4; ++r) {
+    CHECK(csv.rows[r].at("status") == "completed");
+    CHECK(csv.number(r, "steps") > 1000);
+    CHECK(csv.number(r, "wall_seconds") > 0.0);
+    CHECK(csv.number(r, "peak_memory_mb") > 1.0);
+    CHECK(fs::exists(out / csv.rows[r].at("run_dir") / "run.h5"));
+  }
+  CHECK(csv.number(2, "H") == 0.3);
+  CHECK(csv.number(1, "grid") == 0.02);
+  for (std::size_t g = 0; g < 2; ++g) {
+    // A column twice as tall holds twice the particles and strikes the wall harder.
+    CHECK(csv.number(2 + g, "particles") == 2 * csv.number(g, "particles"));
+    CHECK(csv.number(2 + g, "peak_P") > 1.5 * csv.number(g, "peak_P"));
+    // H = 300 mm reaches the wall at T* = 2.5 (Lobovsky et al. 2014: 2.5 at z = 30 mm).
+    CHECK(csv.number(2 + g, "impact_star") == Approx(2.5).margin(0.3));
+    CHECK(csv.number(2 + g, "lowest") <= 0.0);
+  }
+  CHECK(fs::exists(out / "tiny_peak_vs_H.png"));
+  CHECK(fs::exists(out / "plan.json"));
+  const auto first = run_stamps(out);
+  REQUIRE(first.size() == 4);
+
+  // Again: every case is found, none runs.
+  REQUIRE(test::run_command(study_command("tiny_study.toml", out), out.string() + ".2.log") == 0);
+  CHECK(test::read_text(out.string() + ".2.log").find("4 reused, 0 computed now") != std::string::npos);
+  CHECK(run_stamps(out) == first);
+
+  // One case's result deleted: that case alone runs again.
+  const std::string gone = first.begin()->first;
+  fs::remove_all(out / "cases" / gone);
+  REQUIRE(test::run_command(study_command("tiny_study.toml", out), out.string() + ".3.log") == 0);
+  CHECK(test::read_text(out.string() + ".3.log").find("3 reused, 1 computed now") != std::string::npos);
+  const auto third = run_stamps(out);
+  REQUIRE(third.size() == 4);
+  for (const auto& [key, stamp] : first)
+    if (key != gone) CHECK(third.at(key) == stamp);
+  CHECK(test::read_csv(out / "tiny.csv").rows.size() == 4);
+}
+
+TEST_CASE("a failing case is reported with its log while the others complete", "[study][pipeline]") {
+  const fs::path out = test::scratch_dir("failing") / "out";
+  const fs::path log = out.string() + ".log";
+  CHECK(test::run_command(study_command("failing_study.toml", out, "--keep-going"), log) == 1);
+  const std::string text = test::read_text(log);
+  INFO(text);
+  // g = 1e6 m/s2 is numerically unstable at this time step: bsmpm run exits 3.
+  CHECK(text.find("failed: bsmpm: error: numerical instability") != std::string::npos);
+  CHECK(text.find("g = 1e+06") != std::string::npos);
+  const auto at = text.find("log: ");
+  REQUIRE(at != std::string::npos);
+  const std::string case_log = text.substr(at + 5, text.find('\n', at) - at - 5);
+  CHECK(fs::exists(case_log));
+  CHECK(test::read_text(case_log).find("numerical instability") != std::string::npos);
+  const test::Csv csv = test::read_csv(out / "failing.csv");
+  REQUIRE(csv.rows.size() == 2);
+  CHECK(csv.rows[0].at("status") == "completed");
+  CHECK(csv.number(0, "peak_P") > 1000.0);
+  CHECK(csv.rows[1].at("status") == "failed");
+  CHECK(csv.rows[1].at("peak_P").empty());
+}
+
+TEST_CASE("a bad study file is an error naming file:line:column, and nothing runs", "[study][errors]") {
+  const fs::path dir = test::scratch_dir("bad_study");
+  const fs::path study = dir / "bad.toml";
+  {
+    std::ofstream f(study);
+    f << "[study]\nname = \"bad\"\nscene = \"" << test::scene_path("lobovsky_h300.toml") << "\"\n"
+      << "[[axes]]\nname = \"g\"\nkey = \"gravity.gg\"\nvalues = [9.81]\n";
+  }
+  const fs::path out = dir / "out";
+  const std::string command = std::string(BSMPM_EXECUTABLE) + " study " + study.string() + " --dir " + out.string();
+  CHECK(test::run_command(command, dir / "log") == 2);
+  const std::string text = test::read_text(dir / "log");
+  CHECK(text.find(study.string() + ":7:11: gravity.gg: unknown key") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+}
