@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <string>
 #include <thread>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "io/json.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "step/time_step.hpp"
@@ -18,24 +18,6 @@
 namespace bsmpm::cli {
 
 namespace {
-
-// `text` as a JSON string literal: quotes, backslashes and control characters escaped.
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char code[8];
-      std::snprintf(code, sizeof code, "\\u%04x", static_cast<unsigned>(c));
-      out += code;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 const char* kHelp =
     "usage: bsmpm bench SCENE.toml [--steps N] [--warmup N] [--threads N] [--set KEY=VALUE ...] [--json]\n"
@@ -72,7 +54,7 @@ int command_bench(const std::vector<std::string>& argv) {
     std::printf("{\"scene\": %s, \"particles\": %zu, \"order\": %d, \"cells\": [%d, %d], \"cell_size\": [%g, %g], "
                 "\"threads\": %d, \"cores\": %u, \"steps\": %ld, \"seconds\": %.6g, \"seconds_per_step\": %.6g, "
                 "\"particle_steps_per_second\": %.6g}\n",
-                json_string(scene.path).c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(),
+                json_quoted(scene.path).c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(),
                 threads, cores, steps, wall, per_step, rate);
   } else {
     std::printf("scene                %s\n", scene.path.c_str());

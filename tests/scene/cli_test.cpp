@@ -36,7 +36,7 @@ TEST_CASE("bsmpm --help, a command's --help and --version print and exit 0", "[c
   const auto help = bsmpm_with("--help");
   CHECK(help.status == 0);
   CHECK(contains(help.output, "usage: bsmpm COMMAND [options]"));
-  for (const char* command : {"run", "check", "bench", "render", "movie", "compare"}) {
+  for (const char* command : {"run", "check", "bench", "render", "movie", "compare", "study", "metrics"}) {
     INFO(command);
     CHECK(contains(help.output, std::string("  ") + command + " "));
     const auto own = bsmpm_with(std::string(command) + " --help");
