@@ -122,7 +122,7 @@ DiskRun run_disks(const std::string& contact_type) {
 
 }  // namespace
 
-TEST_CASE("Colliding disks bounce apart with contact; momentum and energy", "[physics][contact]") {
+TEST_CASE("Colliding disks bounce apart with contact, momentum kept and energy accounted for", "[physics][contact]") {
   // Radii R_a = 0.2, R_b = 0.15 (mass ratio 0.56), h = 0.05, closing at 0.283 m/s.
   const double Ra = 0.2, Rb = 0.15, h = 0.05;
   const DiskRun r = run_disks("frictionless");

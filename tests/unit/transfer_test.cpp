@@ -50,7 +50,7 @@ std::unique_ptr<BsmpmSimulation<P>> random_cloud(unsigned seed) {
 
 }  // namespace
 
-TEMPLATE_TEST_CASE("P2G conserves mass and momentum; internal forces sum to zero", "[transfer]", Order<1>, Order<2>,
+TEMPLATE_TEST_CASE("P2G conserves mass and momentum and its internal forces sum to zero", "[transfer]", Order<1>, Order<2>,
                    Order<3>) {
   constexpr int P = TestType::value;
   auto sim = random_cloud<P>(3);
