@@ -250,7 +250,10 @@ TEST_CASE("A block slides down a rigid incline at g (sin a - mu cos a) and stick
     const Eigen::Vector3d c = A.ldlt().solve(Eigen::Vector3d(sx[0], sx[1], sx[2]));
     const double acceleration = 2.0 * c[2];
     INFO("acceleration " << acceleration << " m/s2 against " << expected);
-    CHECK(acceleration == Approx(expected).epsilon(0.05));  // the issue's 5 %
+    // Measured on 2026-12-01 (h = 10 mm, order 2): 2.3556 m/s2 against 2.3563 (-0.03 %).
+    // Bound 1 %: a friction coefficient off by 1 % (0.003) moves the acceleration by 1.1 %,
+    // and the fit's own error is thirty times smaller (was 5 %).
+    CHECK(acceleration == Approx(expected).epsilon(0.01));
   }
   SECTION("tan a < mu: stays put") {
     const auto path = slide(10.0);
