@@ -1,9 +1,13 @@
 // Helpers shared by the test suites: repository paths and running a scene in-process.
 #pragma once
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <system_error>
@@ -35,6 +39,24 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
+}
+
+inline std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// What the program did: its exit status (-1 if it did not exit, e.g. killed by a signal)
+// and its standard output and error, interleaved.
+struct ProgramResult {
+  int status = -1;
+  std::string output;
+};
+
+// Runs the built program with `args` (a shell command line), its output kept in `log`.
+inline ProgramResult run_program(const std::string& args, const std::filesystem::path& log) {
+  const int status = std::system((std::string(BSMPM_EXECUTABLE) + " " + args + " > " + log.string() + " 2>&1").c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(log)};
 }
 
 // Loads scenes/NAME with overrides, builds and runs it to its end time.

@@ -10,6 +10,7 @@
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "io/json.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "step/time_step.hpp"
@@ -17,6 +18,7 @@
 namespace bsmpm::cli {
 
 namespace {
+
 const char* kHelp =
     "usage: bsmpm bench SCENE.toml [--steps N] [--warmup N] [--threads N] [--set KEY=VALUE ...] [--json]\n"
     "\n"
@@ -49,11 +51,11 @@ int command_bench(const std::vector<std::string>& argv) {
   const double rate = n * steps / wall;
   const unsigned cores = std::thread::hardware_concurrency();
   if (args.flag("--json")) {
-    std::printf("{\"scene\": \"%s\", \"particles\": %zu, \"order\": %d, \"cells\": [%d, %d], \"cell_size\": [%g, %g], "
+    std::printf("{\"scene\": %s, \"particles\": %zu, \"order\": %d, \"cells\": [%d, %d], \"cell_size\": [%g, %g], "
                 "\"threads\": %d, \"cores\": %u, \"steps\": %ld, \"seconds\": %.6g, \"seconds_per_step\": %.6g, "
                 "\"particle_steps_per_second\": %.6g}\n",
-                scene.path.c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(), threads, cores,
-                steps, wall, per_step, rate);
+                json_quoted(scene.path).c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(),
+                threads, cores, steps, wall, per_step, rate);
   } else {
     std::printf("scene                %s\n", scene.path.c_str());
     std::printf("grid                 %d x %d cells of %.4g mm, order %d\n", g.cells_x, g.cells_y, g.cell_size.x() * 1e3,

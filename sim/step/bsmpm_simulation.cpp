@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "step/grid_to_particle.hpp"
 
 namespace bsmpm {
 
@@ -285,26 +286,6 @@ void BsmpmSimulation<P>::update_grid_velocity(double dt) {
 
 namespace {
 
-// The grid velocity v_I^{k+1} and its increment v_I^{k+1} - v_I^k at a particle (eqs. 11-12).
-struct GridVelocityAt {
-  Vec2 velocity = Vec2::Zero();
-  Vec2 increment = Vec2::Zero();
-};
-
-template <int P>
-inline GridVelocityAt gather_velocity(const ParticleWeights<P>& w, const GridLayer& layer, int ny) {
-  GridVelocityAt g;
-  for (int a = 0; a <= P; ++a) {
-    const int row = (w.i0 + a) * ny + w.j0;
-    for (int c = 0; c <= P; ++c) {
-      const double s = w.wx[a] * w.wy[c];
-      g.velocity += s * layer.velocity[row + c];
-      g.increment += s * layer.velocity_increment[row + c];
-    }
-  }
-  return g;
-}
-
 // Puts a position that a step carried out of [lo, hi] back on its edge; true if it did.
 inline bool keep_inside(Vec2& x, const Vec2& lo, const Vec2& hi) {
   const Vec2 inside = x.cwiseMax(lo).cwiseMin(hi);
@@ -471,27 +452,6 @@ void BsmpmSimulation<P>::update_remap_velocity() {
     });
   constrain(VelocityPhase::kRemap);
 }
-
-namespace {
-
-// Velocity gradient L_p = sum_I v_I (x) grad S_I(x_p^k) from the remapped velocities; its
-// symmetric part times dt is the strain increment of eq. 14.
-template <int P>
-Mat2 velocity_gradient(const ParticleWeights<P>& w, const std::vector<Vec2>& v, int ny) {
-  Mat2 L = Mat2::Zero();
-  for (int a = 0; a <= P; ++a) {
-    const int row = (w.i0 + a) * ny + w.j0;
-    for (int c = 0; c <= P; ++c) {
-      const Vec2& vi = v[row + c];
-      const double gx = w.gx[a] * w.wy[c], gy = w.wx[a] * w.gy[c];
-      L(0, 0) += vi.x() * gx; L(0, 1) += vi.x() * gy;
-      L(1, 0) += vi.y() * gx; L(1, 1) += vi.y() * gy;
-    }
-  }
-  return L;
-}
-
-}  // namespace
 
 // Per body, visiting its material once: the deformation from the remapped velocities
 // (eq. 14), then the stress. The fastest signal bounds the next time step; a particle whose

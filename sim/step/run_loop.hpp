@@ -18,7 +18,7 @@ struct RunProgress {
 };
 
 struct RunHooks {
-  std::function<void(const Simulation&, double dt)> on_frame;      // at t = 0, k * interval, end
+  std::function<void(const Simulation&, double dt)> on_frame;      // at t = 0 and k * interval
   std::function<void(const RunProgress&)> on_progress;              // about once a second
   std::function<bool()> stop;                                       // true: stop after the current step
 };

@@ -1,14 +1,80 @@
 // The elastic gate benchmark (scenes/elastic_gate.toml) at a coarse grid, short enough for
-// CI: the run stays numerically sound and the gate bends the way the water pushes it.
+// CI, against the published curves of tests/data/walhorn_elastic_gate/; and the gate under a
+// still-water load against the cantilever's static deflection, at 4 and 2 mm (1 mm hidden).
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "test_support.hpp"
 
 using namespace bsmpm;
 
 namespace {
+
+// Measured and bounds, in one place (they depend on the fluid solver and the contact: re-
+// measure after a change to either).
+//
+// The benchmark at h = 4 mm, dt = 30 us, 5 % PIC (pinned below), to t = 0.3 s, measured on
+// 2026-12-01: peak tip displacement 43.90 mm at t = 0.242 s, on a plateau (within 0.2 mm of
+// the peak from 0.238 to 0.253 s); the published peaks are 41.4-48.2 mm at 0.231-0.255 s, and
+// the peak time is held to that window. Bound on the peak: 1.5 mm, twice what the time step
+// moves it (43.1 mm with 10 us steps, docs/validation.md). Mean |dx - mean of the published
+// curves| over 0.1-0.3 s: measured 1.02 mm; bound 2 mm, the same margin.
+constexpr double kCoarsePeak = 0.0439, kCoarsePeakBound = 0.0015;  // m
+constexpr double kCoarseCurveDeviationBound = 0.002;              // m
+// Still water, pure FLIP (pinned in the scene below; 5 % PIC damps the swing away): midway
+// between the first maximum and the following minimum of the tip, against the
+// Euler-Bernoulli cantilever (7.44 mm), measured on 2026-12-01: 8.106 mm at 4 mm (+0.665 mm),
+// 7.794 mm at 2 mm (+0.353 mm); docs/validation.md: 7.25 mm at 1 mm (-0.19 mm). The time step
+// moves them by 0.01 mm (20 us at 4 mm: 8.113 mm). Bounds: the measured error plus 0.1 mm
+// (1.3 % of the deflection) for solver changes.
+constexpr double kStillWaterBound4mm = 0.00077, kStillWaterBound2mm = 0.00045;  // m, |midway - cantilever|
+
+// One published curve: t [s], dx [m] of the gate's top-left corner.
+struct Curve {
+  std::string name;
+  std::vector<double> t, dx;
+  double at(double time) const {  // linear interpolation
+    for (std::size_t k = 1; k < t.size(); ++k)
+      if (t[k] >= time) return dx[k - 1] + (dx[k] - dx[k - 1]) * (time - t[k - 1]) / (t[k] - t[k - 1]);
+    return dx.back();
+  }
+};
+
+std::vector<Curve> published_curves() {
+  std::vector<Curve> curves;
+  for (const char* name : {"walhorn", "idelsohn", "ryzhakov", "rafiee", "li"}) {
+    std::ifstream in(test::source_path(std::string("tests/data/walhorn_elastic_gate/mps_jl_") + name + ".csv"));
+    REQUIRE(in.good());
+    Curve c{name, {}, {}};
+    std::string line;
+    while (std::getline(in, line)) {
+      std::istringstream row(line);
+      double t = 0.0, dx = 0.0;
+      char comma = 0;
+      if (row >> t >> comma >> dx) {
+        c.t.push_back(t);
+        c.dx.push_back(dx);
+      }
+    }
+    REQUIRE(c.t.size() > 50);
+    curves.push_back(c);
+  }
+  return curves;
+}
+
+struct Peak {
+  double dx = -1.0, t = 0.0;
+};
+
+Peak peak_of(const std::vector<double>& t, const std::vector<double>& dx) {
+  Peak p;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (dx[k] > p.dx) p = {dx[k], t[k]};
+  return p;
+}
 
 // Water particles lying inside the gate's current shape. The gate is described row by
 // row: for each band of one particle spacing in height, its particles span [left, right]
@@ -40,11 +106,12 @@ int water_inside_gate(const Simulation& sim) {
 
 }  // namespace
 
-TEST_CASE("Elastic gate at h = 4 mm: stable, no leak, tip pushed downstream", "[physics][gate]") {
+TEST_CASE("Elastic gate at h = 4 mm: stable, no leak, and the tip against the published curves", "[physics][gate]") {
   // 4 mm grid (the gate is 3 cells wide), 30 us steps, up to t = 0.3 s: past the impact
-  // (~0.15 s) and the peak deflection (~0.23 s).
+  // (~0.15 s) and the peak deflection (~0.24 s). The velocity update is pinned (5 % PIC).
   const SceneDescription scene = load_scene(test::scene_path("elastic_gate.toml"),
-                                            {"grid.cell_size=0.004", "time.dt=3e-5", "time.end=0.3"});
+                                            {"grid.cell_size=0.004", "time.dt=3e-5", "time.end=0.3",
+                                             "solver.flip=0.95", "solver.smooth_fluid_volume=true"});
   auto sim = build_simulation(scene);
   int most_inside = 0;
   long steps = 0;
@@ -52,7 +119,6 @@ TEST_CASE("Elastic gate at h = 4 mm: stable, no leak, tip pushed downstream", "[
     // A NumericalError (non-finite state, inverted particle) would end the test here.
     if (++steps % 200 == 0) most_inside = std::max(most_inside, water_inside_gate(s));
   });
-  CHECK(sim->time() >= 0.3);
   CHECK(sim->stats().clamped_positions == 0);  // no particle tried to leave the tank
   const Particles& ps = sim->particles();
   const GridInfo grid = sim->grid_info();
@@ -65,32 +131,65 @@ TEST_CASE("Elastic gate at h = 4 mm: stable, no leak, tip pushed downstream", "[
 
   const Probe* tip = test::find_probe(*sim, "tip");
   REQUIRE(tip != nullptr);
-  double peak = -1.0, peak_time = 0.0, before_impact = 0.0;
+  std::vector<double> t, dx;
+  double before_impact = 0.0;
   for (std::size_t r = 0; r < tip->row_count(); ++r) {
-    const double t = tip->row(r)[0], dx = tip->row(r)[1];
-    if (t < 0.1) before_impact = std::max(before_impact, std::abs(dx));
-    if (dx > peak) {
-      peak = dx;
-      peak_time = t;
-    }
+    t.push_back(tip->row(r)[0]);
+    dx.push_back(tip->row(r)[1]);
+    if (t.back() < 0.1) before_impact = std::max(before_impact, std::abs(dx.back()));
   }
-  INFO("tip: peak dx = " << peak * 1e3 << " mm at t = " << peak_time << " s");
   CHECK(before_impact < 1e-4);  // untouched before the water arrives
-  // Pushed downstream by several centimetres (published peaks 41-48 mm at 0.23-0.26 s; the
-  // coarse grid is not held to them here, only to the direction and order of magnitude).
-  CHECK(peak > 0.02);
-  CHECK(peak < 0.08);
-  CHECK(peak_time > 0.15);
+
+  // The published curves: their peaks, and their mean, against which the whole curve from
+  // 0.1 s (before the impact) to 0.3 s is compared.
+  const auto curves = published_curves();
+  double lowest_peak = 1.0, highest_peak = 0.0, earliest = 1.0, latest = 0.0;
+  for (const Curve& c : curves) {
+    const Peak p = peak_of(c.t, c.dx);
+    lowest_peak = std::min(lowest_peak, p.dx);
+    highest_peak = std::max(highest_peak, p.dx);
+    earliest = std::min(earliest, p.t);
+    latest = std::max(latest, p.t);
+  }
+  double deviation = 0.0;
+  int samples = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (t[k] < 0.1) continue;
+    double mean = 0.0;
+    for (const Curve& c : curves) mean += c.at(t[k]) / curves.size();
+    deviation += std::abs(dx[k] - mean);
+    ++samples;
+  }
+  REQUIRE(samples > 100);
+  deviation /= samples;
+  const Peak peak = peak_of(t, dx);
+  INFO("tip: peak dx = " << peak.dx * 1e3 << " mm at t = " << peak.t << " s; published peaks " << lowest_peak * 1e3
+                         << "-" << highest_peak * 1e3 << " mm at " << earliest << "-" << latest
+                         << " s; mean deviation from the published mean over 0.1-0.3 s " << deviation * 1e3 << " mm");
+  // Within the published spread (the accuracy band of this benchmark, tests/data/README.md) ...
+  CHECK(peak.dx >= lowest_peak);
+  CHECK(peak.dx <= highest_peak);
+  CHECK(peak.t >= earliest);
+  CHECK(peak.t <= latest);
+  // ... and at the measured values (kCoarsePeak).
+  CHECK(std::abs(peak.dx - kCoarsePeak) <= kCoarsePeakBound);
+  CHECK(deviation <= kCoarseCurveDeviationBound);
 }
 
-TEST_CASE("A gate suddenly loaded by still water swings about the cantilever's static deflection",
-          "[physics][gate][contact]") {
-  // The benchmark's gate (12 x 80 mm, E = 1 MPa, nu = 0, clamped base) holding back a
-  // column of still water as high as itself, frictionless contact, h = 2 mm. The load is
-  // the triangular hydrostatic one, w(y) = rho g (L - y), whose static tip deflection for a
-  // cantilever is w0 L^4 / (30 E I) with w0 = rho g L, I = t^3 / 12 (plane strain, nu = 0).
-  // Applied suddenly, the gate swings about it: the midpoint of the first maximum and the
-  // following minimum estimates the static deflection.
+namespace {
+
+// The benchmark's gate (12 x 80 mm, E = 1 MPa, nu = 0, clamped base) holding back a column
+// of still water as high as itself, frictionless contact, grid h. The load is the
+// triangular hydrostatic one, w(y) = rho g (L - y), whose static tip deflection for a
+// cantilever is w0 L^4 / (30 E I) with w0 = rho g L, I = t^3 / 12 (plane strain, nu = 0).
+// Applied suddenly, the gate swings about it: the midpoint of the first maximum and the
+// following minimum estimates the static deflection.
+struct StillWaterSwing {
+  double highest = -1.0, lowest = 1.0, t_high = 0.0;
+  double middle() const { return 0.5 * (highest + lowest); }
+};
+
+StillWaterSwing still_water_gate(double h) {
   const std::string text = R"(
 [domain]
 min = [0.0, 0.0]
@@ -102,6 +201,7 @@ end = 0.25
 dt = 1.0e-5
 [solver]
 smooth_fluid_volume = true
+flip = 1.0
 [materials.water]
 type = "fluid"
 density = 1000.0
@@ -133,29 +233,49 @@ type = "material_point"
 body = "gate"
 point = [0.05, 0.08]
 )";
-  const SceneDescription scene = load_scene_text(text, "still_water_gate.toml");
+  const SceneDescription scene = load_scene_text(text, "still_water_gate.toml", {"grid.cell_size=" + std::to_string(h)});
   auto sim = build_simulation(scene);
   test::step_through(*sim, scene, [](const Simulation&) {});
   const Probe* tip = test::find_probe(*sim, "tip");
   REQUIRE(tip != nullptr);
-  double highest = -1.0, lowest = 1.0, t_high = 0.0;
+  StillWaterSwing s;
   for (std::size_t r = 0; r < tip->row_count(); ++r) {
     const double t = tip->row(r)[0], dx = tip->row(r)[1];
-    if (t > 0.05 && t < 0.15 && dx > highest) {
-      highest = dx;
-      t_high = t;
+    if (t > 0.05 && t < 0.15 && dx > s.highest) {
+      s.highest = dx;
+      s.t_high = t;
     }
-    if (t > 0.15 && dx < lowest) lowest = dx;
+    if (t > 0.15 && dx < s.lowest) s.lowest = dx;
   }
-  const double L = 0.08, thickness = 0.012, E = 1.0e6, w0 = 1000.0 * 9.81 * L;
-  const double static_tip = w0 * std::pow(L, 4) / (30.0 * E * std::pow(thickness, 3) / 12.0);  // 7.44 mm
-  const double middle = 0.5 * (highest + lowest);
-  INFO("tip swings between " << lowest * 1e3 << " and " << highest * 1e3 << " mm (first maximum at t = " << t_high
-                             << " s); midway " << middle * 1e3 << " mm against " << static_tip * 1e3 << " mm");
-  CHECK(highest > 1.5 * static_tip);  // a sudden load overshoots (undamped: up to twice)
-  CHECK(highest < 2.0 * static_tip);
-  // Measured: 7.79 mm at h = 2 mm (8.11 at 4 mm, 7.25 at 1 mm). 8 % covers what beam theory
-  // leaves out: shear deformation of a beam 1/6.7 as thick as long (a few per cent), the
-  // water level falling as the gate yields, and water spilling over its top.
-  CHECK(std::abs(middle - static_tip) < 0.08 * static_tip);
+  return s;
+}
+
+const double kStaticTip = 1000.0 * 9.81 * 0.08 * std::pow(0.08, 4) / (30.0 * 1.0e6 * std::pow(0.012, 3) / 12.0);  // 7.44 mm
+
+void check_swing(const StillWaterSwing& s, double h, double bound) {
+  INFO("h = " << h * 1e3 << " mm: tip swings between " << s.lowest * 1e3 << " and " << s.highest * 1e3
+              << " mm (first maximum at t = " << s.t_high << " s); midway " << s.middle() * 1e3 << " mm against "
+              << kStaticTip * 1e3 << " mm");
+  CHECK(s.highest > 1.5 * kStaticTip);  // a sudden load overshoots (undamped: up to twice)
+  CHECK(s.highest < 2.0 * kStaticTip);
+  CHECK(std::abs(s.middle() - kStaticTip) <= bound);
+}
+
+}  // namespace
+
+TEST_CASE("A gate suddenly loaded by still water swings about the cantilever's deflection, closer on a finer grid",
+          "[physics][gate][contact][convergence]") {
+  // The beam theory leaves out shear deformation of a beam 1/6.7 as thick as long (+2 % by
+  // Timoshenko), the water level falling as the gate yields and water spilling over its top;
+  // the grid error must still fall from 4 to 2 mm (bounds: kStillWaterBound4mm).
+  const StillWaterSwing coarse = still_water_gate(0.004), fine = still_water_gate(0.002);
+  check_swing(coarse, 0.004, kStillWaterBound4mm);
+  check_swing(fine, 0.002, kStillWaterBound2mm);
+  CHECK(std::abs(fine.middle() - kStaticTip) < std::abs(coarse.middle() - kStaticTip));
+}
+
+TEST_CASE("Still-water gate at 1 mm (long)", "[.][physics][gate][convergence]") {
+  const StillWaterSwing fine = still_water_gate(0.002), finest = still_water_gate(0.001);
+  check_swing(finest, 0.001, kStillWaterBound2mm);  // docs/validation.md: 7.25 mm
+  CHECK(std::abs(finest.middle() - kStaticTip) < std::abs(fine.middle() - kStaticTip));
 }

@@ -22,17 +22,8 @@ namespace {
 // A directory for one run: the run itself creates it.
 fs::path fresh_dir(const std::string& name) { return test::scratch_dir(name) / "run"; }
 
-int run_program(const std::string& args, const fs::path& log) {
-  const std::string cmd = std::string(BSMPM_EXECUTABLE) + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  REQUIRE(WIFEXITED(status));
-  return WEXITSTATUS(status);
-}
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+int run_program(const std::string& args, const fs::path& log) { return test::run_program(args, log).status; }
+using test::read_text;
 
 // Frames in a run file whose datasets read back completely.
 int readable_frames(const fs::path& h5, std::size_t particles) {

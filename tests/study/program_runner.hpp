@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "test_support.hpp"  // read_text
+
 namespace bsmpm::test {
 
 // Runs a shell command with stdout and stderr into `log`; returns its exit status, or -1 if
@@ -18,11 +20,6 @@ namespace bsmpm::test {
 inline int run_command(const std::string& command, const std::filesystem::path& log) {
   const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-inline std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 // A CSV without quoted fields: the header and one map per row.

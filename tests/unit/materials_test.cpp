@@ -26,6 +26,24 @@ TEST_CASE("Fluid equations of state invert and give the sound speed", "[material
   }
 }
 
+TEST_CASE("Equations of state give the closed-form pressure at a given density", "[materials]") {
+  // K = 1 MPa, rho0 = 1000 kg/m3; rho / rho0 = 1 / J. The values are the closed forms
+  // evaluated by hand (docs/method.md §4), so a wrong exponent or factor cannot pass.
+  WeaklyCompressibleFluid f;
+  f.bulk_modulus = 1e6;
+  f.density = 1000.0;
+  f.eos = EquationOfState::kLinear;  // p = K (rho/rho0 - 1)
+  CHECK(f.pressure(1.0 / 1.01) == Approx(1.0e4).epsilon(1e-12));
+  CHECK(f.pressure(1.0 / 0.99) == Approx(-1.0e4).epsilon(1e-12));
+  f.eos = EquationOfState::kTait;  // p = K/7 ((rho/rho0)^7 - 1); exponent 1 would give 1e4
+  CHECK(f.pressure(1.0 / 1.01) == Approx(10305.0503010014).epsilon(1e-12));  // K/7 (1.01^7 - 1)
+  CHECK(f.pressure(1.0 / 0.99) == Approx(-9704.9502990014).epsilon(1e-12));  // K/7 (0.99^7 - 1)
+  f.tait_gamma = 3.0;  // the std::pow branch: p = K/3 ((rho/rho0)^3 - 1)
+  CHECK(f.pressure(1.0 / 1.01) == Approx(10100.3333333334).epsilon(1e-12));
+  // Sound speed c^2 = (K / rho0) (rho/rho0)^(gamma - 1).
+  CHECK(f.sound_speed(1.0 / 1.01) == Approx(std::sqrt(1000.0 * 1.01 * 1.01)).epsilon(1e-12));
+}
+
 TEST_CASE("Viscous stress is the plane-strain deviator of the rate of deformation", "[materials]") {
   WeaklyCompressibleFluid f;
   f.viscosity = 2.0;
@@ -66,5 +84,43 @@ TEST_CASE("Elastic models: stress-free at rest, objective, linear for small stra
     CHECK(s(1, 1) == Approx(e.lame_lambda() * eps).epsilon(1e-4));
     // A rigid rotation alone carries no stress.
     CHECK(e.stress(R).norm() <= 1e-9);
+  }
+}
+
+TEST_CASE("Elastic models at finite strain equal their closed forms", "[materials]") {
+  // E = 1 MPa, nu = 0.3: lambda = E nu / ((1 + nu)(1 - 2 nu)) = 576923.08 Pa,
+  // mu = E / (2 (1 + nu)) = 384615.38 Pa (plane strain). A 20 % stretch in x, F = diag(1.2, 1),
+  // J = 1.2, with the values evaluated by hand from the formulas in docs/method.md §5.
+  ElasticSolid e;
+  e.youngs_modulus = 1e6;
+  e.poisson_ratio = 0.3;
+  REQUIRE(e.lame_lambda() == Approx(576923.076923077).epsilon(1e-12));
+  REQUIRE(e.shear_modulus() == Approx(384615.384615385).epsilon(1e-12));
+  Mat2 F = Mat2::Identity();
+  F(0, 0) = 1.2;
+  SECTION("Neo-Hookean: sigma = mu/J (F F^T - I) + lambda ln(J)/J I") {
+    e.model = ElasticModel::kNeoHookean;
+    const Mat2 s = e.stress(F);
+    CHECK(s(0, 0) == Approx(228680.235638119).epsilon(1e-12));  // mu 0.44 / 1.2 + lambda ln 1.2 / 1.2
+    CHECK(s(1, 1) == Approx(87654.5946124782).epsilon(1e-12));   // lambda ln 1.2 / 1.2
+    CHECK(s(0, 1) == 0.0);
+    CHECK(s(1, 0) == 0.0);
+    // Simple shear F = [[1, g], [0, 1]], J = 1: sigma = mu [[g^2, g], [g, 0]] (F^T F would
+    // put g^2 on the other diagonal entry).
+    Mat2 shear = Mat2::Identity();
+    shear(0, 1) = 0.3;
+    const Mat2 t = e.stress(shear);
+    CHECK(t(0, 0) == Approx(e.shear_modulus() * 0.09).epsilon(1e-12));
+    CHECK(t(0, 1) == Approx(e.shear_modulus() * 0.3).epsilon(1e-12));
+    CHECK(t(1, 0) == Approx(e.shear_modulus() * 0.3).epsilon(1e-12));
+    CHECK(std::abs(t(1, 1)) <= 1e-9 * e.shear_modulus());
+  }
+  SECTION("Saint Venant-Kirchhoff: sigma = F (lambda tr(E) I + 2 mu E) F^T / J") {
+    e.model = ElasticModel::kSaintVenantKirchhoff;
+    const Mat2 s = e.stress(F);  // E = diag(0.22, 0)
+    CHECK(s(0, 0) == Approx(355384.615384615).epsilon(1e-12));  // 1.44 (lambda + 2 mu) 0.22 / 1.2
+    CHECK(s(1, 1) == Approx(105769.230769231).epsilon(1e-12));  // lambda 0.22 / 1.2
+    CHECK(s(0, 1) == 0.0);
+    CHECK(s(1, 0) == 0.0);
   }
 }

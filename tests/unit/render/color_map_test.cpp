@@ -2,6 +2,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 #include "color/color_map.hpp"
 #include "core/error.hpp"
@@ -38,6 +41,37 @@ TEST_CASE("Colour maps end at their published colours", "[render][color]") {
   CHECK(viridis.at(7.0) == viridis.at(1.0));
   CHECK(viridis.at(std::nan("")) == ColorMap::kMissingValue);
   CHECK_THROWS_AS(ColorMap::named("rainbow"), UsageError);
+}
+
+TEST_CASE("Colour maps match the published tables inside their range", "[render][color]") {
+  // Entries 64, 128 and 192 of matplotlib's _viridis_data and _inferno_data
+  // (lib/matplotlib/_cm_listed.py, 256 entries each); at(k / 255) is entry k exactly.
+  struct Entry {
+    int k;
+    double r, g, b;
+  };
+  auto byte = [](double c) { return static_cast<std::uint8_t>(std::lround(c * 255.0)); };
+  auto check_entries = [&](const std::string& name, const std::vector<Entry>& entries) {
+    const ColorMap map = ColorMap::named(name);
+    for (const Entry& e : entries) {
+      INFO(name << " entry " << e.k);
+      CHECK(map.at(e.k / 255.0) == Rgb{byte(e.r), byte(e.g), byte(e.b)});
+    }
+  };
+  check_entries("viridis", {{64, 0.229739, 0.322361, 0.545706},
+                            {128, 0.127568, 0.566949, 0.550556},
+                            {192, 0.369214, 0.788888, 0.382914}});
+  check_entries("inferno", {{64, 0.341500, 0.062325, 0.429425},
+                            {128, 0.735683, 0.215906, 0.330245},
+                            {192, 0.978422, 0.557937, 0.034931}});
+  // viridis(0.5) as matplotlib publishes it: #21918c.
+  CHECK(ColorMap::named("viridis").at(128 / 255.0) == Rgb{0x21, 0x91, 0x8c});
+  // jet from matplotlib's _jet_data at x = 128/255: red (x - 0.35) / 0.31 = 0.490196, green 1,
+  // blue 1 - (x - 0.34) / 0.31 = 0.477546 (matplotlib's jet(0.5)).
+  CHECK(ColorMap::named("jet").at(128 / 255.0) == Rgb{byte(0.490196), 255, byte(0.477546)});
+  // Between entries the map interpolates linearly: halfway between 127 and 128.
+  const Rgb mid = ColorMap::named("viridis").at(127.5 / 255.0);
+  CHECK(mid == Rgb{byte((0.128729 + 0.127568) / 2), byte((0.563265 + 0.566949) / 2), byte((0.551229 + 0.550556) / 2)});
 }
 
 TEST_CASE("The perceptual maps grow steadily lighter", "[render][color]") {

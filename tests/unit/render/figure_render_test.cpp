@@ -16,9 +16,12 @@ using bsmpm::test::pixel_of;
 namespace {
 
 constexpr Rgb kWhite{255, 255, 255};
+// A pressure inside the range [1000, 5000] Pa that falls on entry 128 of the viridis table.
+constexpr double kMidPressure = 1000.0 + 4000.0 * 128.0 / 255.0;
 
 // A 1 x 0.5 m tank: a water block at the range's low end on the left, one at its high end
-// in the middle, and a solid block displaced by the solid range's maximum on the right.
+// in the middle, one at mid-range right of it, and a solid block displaced by the solid
+// range's maximum on the right.
 FrameParticles two_blocks_and_a_solid() {
   FrameParticles f;
   const double h = 0.01;
@@ -31,6 +34,7 @@ FrameParticles two_blocks_and_a_solid() {
   };
   add(f.water, {0.0, 0.0}, {0.3, 0.3}, 1000.0);  // = water range min
   add(f.water, {0.4, 0.0}, {0.6, 0.3}, 5000.0);  // = water range max
+  add(f.water, {0.62, 0.0}, {0.74, 0.2}, kMidPressure);
   add(f.solids, {0.8, 0.0}, {0.9, 0.2}, 0.02);   // = solid range max
   return f;
 }
@@ -73,12 +77,13 @@ TEST_CASE("A synthetic frame renders with the colour map's ends at known pixels"
 
     const ColorMap viridis = ColorMap::named("viridis"), jet = ColorMap::named("jet");
     auto at = [&](double x, double y) {
-      const auto [px, py] = pixel_of(plot, spec.view, Vec2(x, y));
+      const auto [px, py] = test::pixel_of(plot, spec.view, Vec2(x, y));
       return image.at(px, py);
     };
     CHECK(at(0.15, 0.15) == viridis.at(0.0));  // low water block
     CHECK(at(0.5, 0.15) == viridis.at(1.0));   // high water block
     CHECK(at(0.85, 0.1) == jet.at(1.0));       // solid at the largest displacement
+    CHECK(at(0.68, 0.1) == Rgb{0x21, 0x91, 0x8c});  // mid-range: matplotlib's viridis(0.5)
     CHECK(at(0.7, 0.4) == kWhite);             // empty tank
     // The tank wall just left of the plot.
     CHECK(image.at(plot.x - 1, plot.y + plot.height / 2) == Rgb{70, 70, 70});
@@ -120,8 +125,8 @@ TEST_CASE("Values outside the colour range take the end colours and missing valu
   FigureRenderer renderer;
   const Image image = renderer.render(spec, &layout);
   CHECK(layout.bars.size() == 1);
-  const auto [x_low, y] = pixel_of(layout.plots[0], spec.view, Vec2(0.05, 0.1));
-  const auto [x_nan, y2] = pixel_of(layout.plots[0], spec.view, Vec2(0.15, 0.1));
+  const auto [x_low, y] = test::pixel_of(layout.plots[0], spec.view, Vec2(0.05, 0.1));
+  const auto [x_nan, y2] = test::pixel_of(layout.plots[0], spec.view, Vec2(0.15, 0.1));
   CHECK(image.at(x_low, y) == ColorMap::named("viridis").at(0.0));
   CHECK(image.at(x_nan, y2) == ColorMap::kMissingValue);
 }

@@ -1,0 +1,164 @@
+// The command line: help and version, usage errors with their exit codes and messages, an
+// output directory that is occupied or cannot be created, and bsmpm bench --json.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "core/version.hpp"
+#include "test_support.hpp"
+
+using namespace bsmpm;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratch() {
+  static const fs::path root = test::scratch_dir("cli");
+  return root;
+}
+
+test::ProgramResult bsmpm_with(const std::string& args) { return test::run_program(args, scratch() / "program.log"); }
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+const std::string kScene = test::scene_path("hydrostatic_tank.toml");
+// A run of a few steps: enough to start writing, fast to finish.
+const std::string kShortRun = " --quiet --set time.end=0.002 --set output.frame_interval=0.002";
+
+}  // namespace
+
+TEST_CASE("bsmpm --help, a command's --help and --version print and exit 0", "[cli]") {
+  const auto help = bsmpm_with("--help");
+  CHECK(help.status == 0);
+  CHECK(contains(help.output, "usage: bsmpm COMMAND [options]"));
+  for (const char* command : {"run", "check", "bench", "render", "movie", "compare", "study", "metrics"}) {
+    INFO(command);
+    CHECK(contains(help.output, std::string("  ") + command + " "));
+    const auto own = bsmpm_with(std::string(command) + " --help");
+    CHECK(own.status == 0);
+    CHECK(contains(own.output, std::string("usage: bsmpm ") + command));
+  }
+  const auto version = bsmpm_with("--version");
+  CHECK(version.status == 0);
+  CHECK(version.output == std::string("bsmpm ") + kVersion + " (" + kGitRevision + ")\n");
+  // Without any argument the usage goes to standard error and the status says it was wrong.
+  const auto bare = bsmpm_with("");
+  CHECK(bare.status == 2);
+  CHECK(contains(bare.output, "usage: bsmpm COMMAND"));
+}
+
+TEST_CASE("Usage errors exit 2 with a message naming the problem and write nothing", "[cli]") {
+  struct Case {
+    std::string args, message;
+  };
+  const fs::path out = scratch() / "never";
+  const std::vector<Case> cases = {
+      {"frobnicate", "bsmpm: error: unknown command 'frobnicate' (see bsmpm --help)"},
+      {"run " + kScene, "bsmpm: error: run needs --out DIR (see bsmpm run --help)"},
+      {"run --out " + out.string(), "bsmpm: error: run expects one scene file"},
+      {"run " + kScene + " --out " + out.string() + " --threads two", "--threads expects an integer, got 'two'"},
+      {"run " + kScene + " --out " + out.string() + " --threads -1", "--threads expects 0 (all cores) to 1024"},
+      {"run " + kScene + " --out " + out.string() + " --threads 5000", "--threads expects 0 (all cores) to 1024"},
+      {"run " + kScene + " --out " + out.string() + " --threads", "--threads needs a value"},
+      {"run " + kScene + " --out " + out.string() + " --fast", "unknown option --fast (see --help)"},
+      {"bench " + kScene + " --steps 0", "--steps must be >= 1"},
+  };
+  for (const Case& c : cases) {
+    INFO("bsmpm " << c.args);
+    const auto r = bsmpm_with(c.args);
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, c.message));
+    CHECK(!fs::exists(out));
+  }
+}
+
+TEST_CASE("bsmpm run refuses an occupied --out and one that cannot be created", "[cli][output]") {
+  SECTION("a directory holding other files, without --force") {
+    const fs::path dir = scratch() / "occupied";
+    fs::create_directories(dir);
+    std::ofstream(dir / "notes.txt") << "keep me\n";
+    const auto r = bsmpm_with("run " + kScene + " --out " + dir.string() + kShortRun);
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, "bsmpm: error: " + dir.string() + " is not empty; choose a new directory or pass --force"));
+    CHECK(test::read_text(dir / "notes.txt") == "keep me\n");
+    CHECK(!fs::exists(dir / "run.h5"));
+  }
+  SECTION("a regular file") {
+    const fs::path file = scratch() / "a_file";
+    std::ofstream(file) << "x";
+    const auto r = bsmpm_with("run " + kScene + " --out " + file.string() + kShortRun);
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, "bsmpm: error: " + file.string() + " exists and is not a directory"));
+    CHECK(test::read_text(file) == "x");
+  }
+  SECTION("a directory below a regular file (cannot be created)") {
+    const fs::path file = scratch() / "not_a_directory";
+    std::ofstream(file) << "x";
+    const fs::path dir = file / "run";
+    const auto r = bsmpm_with("run " + kScene + " --out " + dir.string() + kShortRun);
+    INFO(r.output);
+    CHECK(r.status == 1);  // an I/O failure, not a usage error
+    CHECK(contains(r.output, "bsmpm: error: "));
+    CHECK(contains(r.output, dir.string()));
+    CHECK(contains(r.output, "Not a directory"));
+    CHECK(test::read_text(file) == "x");
+  }
+}
+
+namespace {
+
+// The fields of a flat JSON object, checked to be valid JSON by Python's parser (a
+// dependency of scripts/setup), one "key=value" line each; lists become "a,b".
+std::map<std::string, std::string> json_fields(const std::string& json) {
+  const fs::path in = scratch() / "bench.json", out = scratch() / "bench.fields";
+  std::ofstream(in) << json;
+  const std::string cmd = "python3 -c \"import json, sys; d = json.load(open(sys.argv[1])); "
+                          "[print(k + '=' + (','.join(map(str, v)) if isinstance(v, list) else str(v))) for k, v in d.items()]\" " +
+                          in.string() + " > " + out.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  INFO(test::read_text(out));
+  REQUIRE(status == 0);
+  std::map<std::string, std::string> fields;
+  std::istringstream lines(test::read_text(out));
+  for (std::string line; std::getline(lines, line);) {
+    const auto eq = line.find('=');
+    if (eq != std::string::npos) fields[line.substr(0, eq)] = line.substr(eq + 1);
+  }
+  return fields;
+}
+
+}  // namespace
+
+TEST_CASE("bsmpm bench --json prints one valid JSON object with the run's facts", "[cli][bench]") {
+  // A scene path that needs escaping in JSON: a double quote and a backslash in its name.
+  const fs::path scene = scratch() / "tank \"quoted\" \\ name.toml";
+  fs::copy_file(kScene, scene, fs::copy_options::overwrite_existing);
+  const auto r = bsmpm_with("bench '" + scene.string() + "' --steps 3 --warmup 1 --threads 2 --json");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  const auto f = json_fields(r.output);
+  CHECK(f.at("scene") == scene.string());
+  CHECK(f.at("particles") == "6400");  // 0.2 x 0.2 m of water at 2 x 2 particles per 5 mm cell
+  CHECK(f.at("order") == "2");
+  CHECK(f.at("cells") == "40,60");
+  CHECK(std::stod(f.at("cell_size").substr(0, f.at("cell_size").find(','))) == 0.005);
+  CHECK(f.at("threads") == "2");
+  CHECK(f.at("cores") == std::to_string(std::thread::hardware_concurrency()));
+  CHECK(f.at("steps") == "3");
+  // The timings are the machine's (not asserted); they must agree with each other.
+  const double seconds = std::stod(f.at("seconds")), per_step = std::stod(f.at("seconds_per_step"));
+  const double rate = std::stod(f.at("particle_steps_per_second"));
+  CHECK(seconds > 0.0);
+  CHECK(per_step == Approx(seconds / 3).epsilon(1e-4));
+  CHECK(rate == Approx(6400 * 3 / seconds).epsilon(1e-4));
+  CHECK(f.size() == 11);
+}
