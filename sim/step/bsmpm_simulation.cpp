@@ -1,6 +1,7 @@
 #include "step/bsmpm_simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -310,10 +311,9 @@ inline void scatter_affine(const ParticleWeights<P>& w, const Vec2& mv, const Ma
                            int ny) {
   for (int a = 0; a <= P; ++a) {
     const int row = (w.i0 + a) * ny + w.j0;
-    for (int c = 0; c <= P; ++c) {
-      const Vec2 d(gx[w.i0 + a] - x.x(), gy[w.j0 + c] - x.y());
-      field[row + c] += (w.wx[a] * w.wy[c]) * (mv + mC * d);
-    }
+    const Vec2 at_column = mv + (gx[w.i0 + a] - x.x()) * mC.col(0);
+    for (int c = 0; c <= P; ++c)
+      field[row + c] += (w.wx[a] * w.wy[c]) * (at_column + (gy[w.j0 + c] - x.y()) * mC.col(1));
   }
 }
 
@@ -326,30 +326,41 @@ inline void scatter_affine(const ParticleWeights<P>& w, const Vec2& mv, const Ma
 // C_p faster than the time step resolves (a particle within ~h/8 of a wall loses part of
 // its normal gradient). Linear splines have D_p = 0 at the nodes: there C_p is the gradient
 // of the interpolated velocity, sum v_I grad S_Ip^T.
+// With tensor-product weights S_Ip = N_a(x) N_c(y), sum_c N_c = 1 and linear reproduction,
+// D_p is diagonal, D_xx = sum_a N_a (xi_a - x)^2 and D_yy = sum_c N_c (eta_c - y)^2: it is
+// evaluated per axis, and B_p through the row sums of the velocities.
 template <int P>
 inline Mat2 affine_velocity(const ParticleWeights<P>& w, const std::vector<Vec2>& v, int ny, const Vec2& x,
                             const std::vector<double>& gx, const std::vector<double>& gy, const Vec2& floor) {
-  Mat2 B = Mat2::Zero(), D = Mat2::Zero();
-  for (int a = 0; a <= P; ++a) {
-    const int row = (w.i0 + a) * ny + w.j0;
-    for (int c = 0; c <= P; ++c) {
-      if constexpr (P == 1) {
-        const Vec2 grad(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]);
-        B += v[row + c] * grad.transpose();
-      } else {
-        const double s = w.wx[a] * w.wy[c];
-        const Vec2 d(gx[w.i0 + a] - x.x(), gy[w.j0 + c] - x.y());
-        B += (s * v[row + c]) * d.transpose();
-        D += (s * d) * d.transpose();
-      }
-    }
-  }
+  Mat2 B = Mat2::Zero();
   if constexpr (P == 1) {
+    for (int a = 0; a <= P; ++a) {
+      const int row = (w.i0 + a) * ny + w.j0;
+      for (int c = 0; c <= P; ++c) B += v[row + c] * Vec2(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]).transpose();
+    }
     return B;
   } else {
-    D(0, 0) = std::max(D(0, 0), floor.x());
-    D(1, 1) = std::max(D(1, 1), floor.y());
-    return B * D.inverse();
+    std::array<double, P + 1> dy;
+    double Dyy = 0.0, Dxx = 0.0;
+    for (int c = 0; c <= P; ++c) {
+      dy[c] = gy[w.j0 + c] - x.y();
+      Dyy += w.wy[c] * dy[c] * dy[c];
+    }
+    for (int a = 0; a <= P; ++a) {
+      const int row = (w.i0 + a) * ny + w.j0;
+      const double dx = gx[w.i0 + a] - x.x();
+      Dxx += w.wx[a] * dx * dx;
+      Vec2 along = Vec2::Zero(), across = Vec2::Zero();  // sum_c N_c v, sum_c N_c v dy
+      for (int c = 0; c <= P; ++c) {
+        along += w.wy[c] * v[row + c];
+        across += (w.wy[c] * dy[c]) * v[row + c];
+      }
+      B.col(0) += (w.wx[a] * dx) * along;
+      B.col(1) += w.wx[a] * across;
+    }
+    B.col(0) /= std::max(Dxx, floor.x());
+    B.col(1) /= std::max(Dyy, floor.y());
+    return B;
   }
 }
 
