@@ -426,7 +426,10 @@ void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
       const Vec2 x_old = ps.x[p];
       Vec2 x = ps.x[p] + dt * v_new;                                   // eq. 12 with v_I^{k+1}
       if (shift) {
-        const Vec2 dx = shift_of<P>(w, layer.volume, ny, inverse_integral_x_, inverse_integral_y_, shift_scale);
+        Vec2 dx = shift_of<P>(w, layer.volume, ny, inverse_integral_x_, inverse_integral_y_, shift_scale);
+        // A shift never carries a particle out of the domain: that part of it is dropped.
+        for (int k = 0; k < 2; ++k)
+          if (x[k] + dx[k] < lo[k] || x[k] + dx[k] > hi[k]) dx[k] = 0.0;
         x += dx;
         if constexpr (kAffine) v += C * dx;
       }
