@@ -34,6 +34,7 @@ class BsmpmSimulation final : public Simulation {
   std::vector<std::string> describe_effects() const override;
   const std::vector<std::unique_ptr<Probe>>& probes() const override { return probes_; }
   void sample_probes() override;
+  void restore(Particles particles, const StepCounters& counters, const std::vector<ProbeState>& probes) override;
 
   // Exposed for the unit tests of the transfers.
   StepState<P>& state() { return st_; }
@@ -49,7 +50,7 @@ class BsmpmSimulation final : public Simulation {
   void update_remap_velocity();
   struct DeformationUpdate {
     double max_signal_speed = 0.0;  // largest c + |v|: bounds the next time step
-    bool invalid = false;           // some particle's state is non-finite or inverted
+    bool invalid = false;           // some particle's state is non-finite or its density out of range
   };
   // One body's particles [begin, end) and the remapped velocities of its grid field.
   struct BodyParticles {
@@ -61,7 +62,8 @@ class BsmpmSimulation final : public Simulation {
   DeformationUpdate update_body(const BodyParticles& body, const WeaklyCompressibleFluid& fluid, double dt);
   DeformationUpdate update_body(const BodyParticles& body, const ElasticSolid& solid, double dt);
   DeformationUpdate update_body(const BodyParticles& body, const RigidBody& rigid, double dt);
-  [[noreturn]] void throw_instability(double dt) const;
+  [[noreturn]] void throw_instability() const;
+  bool density_in_range(double J) const { return J >= j_min_ && J <= j_max_; }
   void smooth_volume_ratio(std::size_t body_index);
   void clear_grid();
   void constrain(VelocityPhase phase);
@@ -76,6 +78,7 @@ class BsmpmSimulation final : public Simulation {
   std::vector<double> greville_x_, greville_y_;
   std::vector<Mat2> gradient_scratch_;
   double max_signal_speed_ = 0.0;
+  double j_min_ = 0.0, j_max_ = 0.0;  // the density range as volume ratios J = rho0 / rho
   SimulationStats stats_;
 };
 
