@@ -176,6 +176,7 @@ void read_probes(TableReader& root, SceneDescription& s, const SceneTables& scen
     ProbeDescription p;
     p.name = t.string("name");
     if (!std::regex_match(p.name, valid_name)) t.fail("name", "use letters, digits, '_', '-' and '.' only (it names a file)");
+    if (p.name == "conservation") t.fail("name", "\"conservation\" is the run's own series (conservation.csv)");
     for (const auto& other : s.probes)
       if (other.name == p.name) t.fail("name", "a probe named \"" + p.name + "\" already exists");
     const std::string type = t.choice("type", {"wall_pressure", "surface_pressure", "material_point", "front"});
@@ -258,6 +259,11 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
     s.solver.mass_cutoff_ratio = solver->number_or("mass_cutoff", s.solver.mass_cutoff_ratio, Range::closed(0.0, 1.0));
     s.solver.sort_interval = static_cast<int>(solver->integer_or("sort_interval", 50, 0, 1000000));
     s.solver.smooth_fluid_volume = solver->boolean_or("smooth_fluid_volume", false);
+    const Vec2 range = solver->vec2_or("density_range", Vec2(s.solver.min_density_ratio, s.solver.max_density_ratio),
+                                       Range::positive());
+    if (!(range.x() < 1.0 && range.y() > 1.0)) solver->fail("density_range", "must be [low, high] with low < 1 < high");
+    s.solver.min_density_ratio = range.x();
+    s.solver.max_density_ratio = range.y();
   }
   std::map<std::string, Material> materials;
   {
