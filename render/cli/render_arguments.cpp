@@ -32,7 +32,8 @@ const char* kPictureHelp =
     "  --solid-colormap NAME  solid colour map [inferno]\n"
     "  --size WxH             image size in pixels; W alone keeps the default height [1280x720]\n"
     "  --view X0,Y0,X1,Y1     world window in m [the tank]\n"
-    "  --splat-scale S        particle splat side / sqrt(particle volume), 0.5..4 [1.3]\n"
+    "  --splat-scale S        how far the material is drawn past its outermost particles, in\n"
+    "                         half spacings (sqrt(particle volume) / 2), 0.5..4 [1]\n"
     "  --colorbar WHERE       auto, right or bottom [auto: whichever leaves the plot larger]\n"
     "  --font FILE.ttf        label font [/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf]\n";
 

@@ -48,13 +48,16 @@ Image FigureRenderer::render(const FigureSpec& spec, FigureLayout* layout_used) 
     set_panel_view(plot.expanded(wall), world, spec.height);
     // Solids over water (the obstacle stays visible under a splash), walls last: they lie
     // outside the domain and trim the splats of particles touching a wall.
+    // The water reaches up to the walls and the solids, which cover it (MPM holds particles
+    // of different bodies about a cell apart at a contact).
     if (const FrameParticles* p = spec.panels[i].particles) {
       if (spec.water)
         particles_->paint(p->water.position, p->water.side, p->water.value, spec.water->map, spec.water->range,
-                          spec.splat_scale, layout.pixels_per_unit);
+                          spec.splat_scale, layout.pixels_per_unit,
+                          SplatObstacles{&spec.domain, spec.solids ? &p->solids.position : nullptr});
       if (spec.solids)
         particles_->paint(p->solids.position, p->solids.side, p->solids.value, spec.solids->map,
-                          spec.solids->range, spec.splat_scale, layout.pixels_per_unit);
+                          spec.solids->range, spec.splat_scale, layout.pixels_per_unit, SplatObstacles{&spec.domain});
     }
     paint_tank_walls(spec.domain, wall * per_pixel.x(), kWallColor);
   }

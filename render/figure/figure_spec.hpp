@@ -34,7 +34,7 @@ struct FigureSpec {
   int rows = 1, cols = 1;
   WorldRect view;    // the world window of every panel
   WorldRect domain;  // the tank; its walls are drawn just outside
-  double splat_scale = 1.3;
+  double splat_scale = 1.0;  // margin past the outermost particles / (sqrt(volume) / 2)
   ColorBarPlacement placement = ColorBarPlacement::kAuto;
   std::string header_left, header_right;
   std::vector<FigurePanel> panels;  // row-major, at most rows * cols

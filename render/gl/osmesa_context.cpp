@@ -9,8 +9,9 @@
 namespace bsmpm::render {
 
 OsMesaContext::OsMesaContext(int width, int height) {
-  // No depth, stencil or accumulation buffer: the painters draw in order (painter's algorithm).
-  context_ = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
+  // A depth buffer for the particle painter (the nearest particle's splat wins a pixel);
+  // no stencil or accumulation buffer: layers are drawn in order (painter's algorithm).
+  context_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!context_) throw Error("OSMesa: cannot create an off-screen OpenGL context (is libosmesa6 installed?)");
   try {
     resize(width, height);

@@ -25,7 +25,7 @@ struct RenderOptions {
   std::map<std::string, ValueRange> ranges;         // by field key, incl. "displacement"; SI
   std::optional<ValueRange> water_range;            // of whichever water field is drawn (--range)
   std::optional<ValueRange> solid_range;            // of the displacement (--solid-range)
-  std::optional<double> splat_scale;                // splat side / sqrt(volume)
+  std::optional<double> splat_scale;                // reach past the outermost particles / (sqrt(volume) / 2)
   std::optional<ColorBarPlacement> colorbar;
   std::optional<int> fps;                           // movie frames per second
   std::optional<double> slowmo;                     // movie seconds per simulated second
@@ -36,7 +36,9 @@ struct RenderOptions {
 
 // Defaults of what nothing set, and their limits (shared by the scene table and the CLI).
 inline constexpr int kMinImageSide = 16, kMaxImageSide = 8192;
-inline constexpr double kDefaultSplatScale = 1.3, kMinSplatScale = 0.5, kMaxSplatScale = 4.0;
+// Splat scale 1: the material ends half a spacing beyond its outermost particles, where the
+// edge of a block seeded at cell centres lies.
+inline constexpr double kDefaultSplatScale = 1.0, kMinSplatScale = 0.5, kMaxSplatScale = 4.0;
 inline constexpr int kDefaultFps = 30, kMaxFps = 240;
 inline constexpr double kDefaultSlowmo = 10.0;
 
