@@ -5,6 +5,7 @@
 
 #include "core/format.hpp"
 #include "diagnostics/conservation.hpp"
+#include "scene/run_cost.hpp"
 #include "step/effects/gravity.hpp"
 
 namespace bsmpm::test {
@@ -61,9 +62,14 @@ double deepest_penetration(const Simulation& sim, const SceneDescription& scene)
 
 }  // namespace
 
-HardCaseReport run_hard_case(const std::string& name, const std::vector<std::string>& overrides) {
+HardCaseReport run_hard_case(const std::string& name, const std::vector<std::string>& overrides,
+                             double fixed_dt_factor) {
   HardCaseReport r;
-  const SceneDescription scene = load_scene(source_path("tests/hard/scenes/" + name), overrides);
+  SceneDescription scene = load_scene(source_path("tests/hard/scenes/" + name), overrides);
+  if (fixed_dt_factor > 0.0) {
+    scene.time.mode = TimeStepSettings::Mode::kFixed;
+    scene.time.dt = fixed_dt_factor * predict_run_cost(scene).stable_dt;
+  }
   auto sim = build_simulation(scene);
   const Particles& ps = sim->particles();
   const GridInfo g = sim->grid_info();

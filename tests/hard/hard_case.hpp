@@ -40,8 +40,10 @@ struct HardCaseReport {
 };
 
 // Runs tests/hard/scenes/NAME with the overrides to its end time (or its first numerical
-// error), checking every step.
-HardCaseReport run_hard_case(const std::string& name, const std::vector<std::string>& overrides);
+// error), checking every step. A `fixed_dt_factor` > 0 replaces the scene's time step by a
+// fixed one, that many times the acoustic limit the cost prediction gives (run_cost.hpp).
+HardCaseReport run_hard_case(const std::string& name, const std::vector<std::string>& overrides,
+                             double fixed_dt_factor = 0.0);
 
 // One line with every measure, for the log of a test and the margins in its comments.
 std::string describe(const HardCaseReport& r);
