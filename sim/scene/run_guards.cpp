@@ -75,13 +75,6 @@ std::vector<std::string> check_run_cost(const SceneDescription& scene, const Run
         "available. Use a coarser grid (grid.cell_size) or fewer particles per cell",
         scene.path.c_str(), cost.particles, cost.grid_fields, cost.control_points, format_bytes(cost.memory_bytes).c_str(),
         format_bytes(machine.available_memory_bytes).c_str()));
-  const double disk = cost.output_bytes + (checkpoints ? 2.0 * cost.checkpoint_bytes : 0.0);
-  if (machine.free_disk_bytes >= 0.0 && disk > machine.free_disk_bytes)
-    throw ResourceError(format(
-        "%s: %.4g frames of %.4g particles make about %s of output%s; the disk has %s free. Write fewer frames "
-        "(output.frame_interval) or use a coarser grid",
-        scene.path.c_str(), cost.frames, cost.particles, format_bytes(disk).c_str(),
-        checkpoints ? " with checkpoints" : "", format_bytes(machine.free_disk_bytes).c_str()));
   const std::string why = format("body '%s' carries waves at %.4g m/s (flow %.3g m/s), so dt = %.3g s", cost.stiffest_body.c_str(),
                                  cost.wave_speed, cost.flow_speed, cost.first_dt);
   if (cost.steps > kRefusedSteps)
@@ -89,6 +82,15 @@ std::vector<std::string> check_run_cost(const SceneDescription& scene, const Run
                                "program makes; check the material's stiffness (bulk_modulus, youngs_modulus)",
                                scene.path.c_str(), why.c_str(), cost.steps, scene.time.end, cost.particle_steps,
                                kRefusedSteps));
+  // The output after the step count: probe and conservation rows grow with the steps, and
+  // an absurd step count is the cause to name.
+  const double disk = cost.output_bytes + (checkpoints ? 2.0 * cost.checkpoint_bytes : 0.0);
+  if (machine.free_disk_bytes >= 0.0 && disk > machine.free_disk_bytes)
+    throw ResourceError(format(
+        "%s: %.4g frames of %.4g particles make about %s of output%s; the disk has %s free. Write fewer frames "
+        "(output.frame_interval) or use a coarser grid",
+        scene.path.c_str(), cost.frames, cost.particles, format_bytes(disk).c_str(),
+        checkpoints ? " with checkpoints" : "", format_bytes(machine.free_disk_bytes).c_str()));
   std::vector<std::string> warnings;
   if (cost.steps > kWarnedSteps)
     warnings.push_back(format("%s: about %.3g time steps (%.3g particle-steps): a long run", why.c_str(), cost.steps,
