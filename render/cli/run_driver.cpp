@@ -127,6 +127,8 @@ int drive_run(RunContext& ctx, RunLoopState start) {
   if (!outcome.interrupted) {
     std::error_code ignored;
     fs::remove(checkpoint_path(ctx.dir), ignored);  // a completed run has nothing to resume
+    // nor the half-written temporary of a checkpoint that a kill interrupted
+    fs::remove(checkpoint_path(ctx.dir).string() + ".tmp", ignored);
   }
 
   const double steps_per_s = outcome.steps / std::max(outcome.wall_seconds, 1e-9);

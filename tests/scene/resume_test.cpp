@@ -102,6 +102,7 @@ void require_identical_runs(const fs::path& a, const fs::path& b) {
   CHECK(h5::dataset_shape(fb, "conservation")[0] == names.size());
   CHECK(read_text(a / "conservation.csv") == read_text(b / "conservation.csv"));
   CHECK(!fs::exists(b / "checkpoint.h5"));  // removed once the run completed
+  CHECK(!fs::exists(b / "checkpoint.h5.tmp"));
 }
 
 fs::path uninterrupted() {
@@ -149,6 +150,9 @@ TEST_CASE("A run killed between checkpoints resumes from the last one bit for bi
                                  [](const fs::path& d) { return fs::exists(d / "checkpoint.h5") && frames_listed(d) >= 6; },
                                  dir);
   REQUIRE(WIFSIGNALED(status));
+  // As if the kill had come while the next checkpoint was being written: its temporary is
+  // half there, and the last whole checkpoint is the one to resume from.
+  std::ofstream(dir / "checkpoint.h5.tmp") << "half a checkpoint";
   CHECK(resume(dir) == 0);
   require_identical_runs(uninterrupted(), dir);
   // Resuming a completed run is refused.
