@@ -128,25 +128,37 @@ Handle open_attribute(hid_t obj, const std::string& name) {
   if (!has_attribute(obj, name)) throw IoError("HDF5: missing attribute '" + name + "'");
   return Handle(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "opening attribute " + name);
 }
+
+// A scalar attribute is read into one value: an attribute of several elements (a damaged or
+// foreign file) would overflow it, so it is refused.
+Handle open_single_attribute(hid_t obj, const std::string& name) {
+  Handle attr = open_attribute(obj, name);
+  Handle space(H5Aget_space(attr), "attribute space");
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  if (n != 1)
+    throw IoError("HDF5: attribute '" + name + "' holds " + std::to_string(n) + " values where one was expected");
+  return attr;
+}
 }  // namespace
 
 double get_double_attribute(hid_t obj, const std::string& name) {
-  Handle attr = open_attribute(obj, name);
+  Handle attr = open_single_attribute(obj, name);
   double v = 0;
   check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "reading attribute " + name);
   return v;
 }
 
 long get_long_attribute(hid_t obj, const std::string& name) {
-  Handle attr = open_attribute(obj, name);
+  Handle attr = open_single_attribute(obj, name);
   long long v = 0;
   check(H5Aread(attr, H5T_NATIVE_LLONG, &v), "reading attribute " + name);
   return static_cast<long>(v);
 }
 
 std::string get_string_attribute(hid_t obj, const std::string& name) {
-  Handle attr = open_attribute(obj, name);
+  Handle attr = open_single_attribute(obj, name);
   Handle type(H5Aget_type(attr), "attribute type");
+  if (H5Tget_class(type) != H5T_STRING) throw IoError("HDF5: attribute '" + name + "' is not a string");
   if (H5Tis_variable_str(type) > 0) {
     char* s = nullptr;
     Handle mem(H5Tcopy(H5T_C_S1), "string type");
@@ -186,9 +198,10 @@ void write_dataset(hid_t parent, const std::string& name, const std::uint32_t* d
 std::vector<std::size_t> dataset_shape(hid_t parent, const std::string& name) {
   Handle set(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name);
   Handle space(H5Dget_space(set), "dataset space");
-  hsize_t dims[4] = {0, 0, 0, 0};
-  const int rank = H5Sget_simple_extent_dims(space, dims, nullptr);
-  return std::vector<std::size_t>(dims, dims + std::max(rank, 0));
+  const int rank = H5Sget_simple_extent_ndims(space);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+  if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  return std::vector<std::size_t>(dims.begin(), dims.end());
 }
 
 std::vector<double> read_doubles(hid_t parent, const std::string& name) {
