@@ -1,26 +1,24 @@
-// bsmpm run SCENE --out DIR: simulates a scene, writing DIR/run.h5, DIR/run.xdmf and one CSV
-// per probe. Frames are flushed as they are written; Ctrl-C stops after the current step and
-// keeps everything written so far.
+// bsmpm run SCENE --out DIR: simulates a scene, writing DIR/run.h5, DIR/run.xdmf, one CSV
+// per probe and conservation.csv. Frames are flushed as they are written; Ctrl-C stops after
+// the current step, keeps everything written so far and writes a checkpoint, from which
+// bsmpm run --resume DIR continues bit for bit.
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <thread>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
-#include "cli/interruption.hpp"
-#include "cli/progress.hpp"
+#include "cli/run_driver.hpp"
 #include "cli/scene_summary.hpp"
 #include "core/error.hpp"
 #include "core/version.hpp"
-#include "io/run_summary.hpp"
-#include "io/run_writer.hpp"
+#include "io/run_reader.hpp"
+#include "scene/run_guards.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "settings/render_options.hpp"
-#include "step/run_loop.hpp"
+#include "step/effects/gravity.hpp"
 
 namespace fs = std::filesystem;
 
@@ -30,24 +28,37 @@ namespace {
 
 const char* kHelp =
     "usage: bsmpm run SCENE.toml --out DIR [options]\n"
+    "       bsmpm run --resume DIR [--threads N] [--quiet] [--checkpoint-every EVERY]\n"
     "\n"
     "Simulates the scene and writes\n"
     "  DIR/run.h5      frames (particle position, velocity, pressure, stress, displacement,\n"
-    "                  volume), probe series, grid, bodies and provenance (docs/output-format.md)\n"
+    "                  volume), probe series, conservation series, grid, bodies and provenance\n"
+    "                  (docs/output-format.md)\n"
     "  DIR/run.xdmf    the frames for ParaView\n"
     "  DIR/NAME.csv    one table per probe, with a header row\n"
+    "  DIR/conservation.csv  mass, momentum, energies and the work of walls and contact per frame\n"
     "  DIR/summary.json  steps, wall time, threads, particles, peak memory, exit status\n"
+    "  DIR/checkpoint.h5  the state to resume from (every --checkpoint-every, and when stopped)\n"
+    "\n"
+    "Before anything is built, the run's cost is predicted; a run that would not fit in memory\n"
+    "or on the disk, or whose time step is absurdly small, is refused (exit 2).\n"
     "\n"
     "options\n"
     "  --out DIR          output directory (created; must not hold another run)\n"
     "  --set KEY=VALUE    override a scene value, e.g. --set grid.cell_size=0.008\n"
     "                     (repeatable; VALUE is TOML, a bare word is a string)\n"
     "  --threads N        OpenMP threads (default: all cores); results do not depend on N\n"
+    "  --checkpoint-every EVERY  write DIR/checkpoint.h5 every EVERY of simulated time (0.05s)\n"
+    "                     or steps (2000steps); Ctrl-C and SIGTERM always write one\n"
+    "  --resume DIR       continue the run in DIR from its checkpoint: frames and probe rows\n"
+    "                     written after it are replaced; the result is the same, bit for bit,\n"
+    "                     as a run never interrupted\n"
     "  --force            replace the run already in DIR\n"
     "  --quiet            no progress line\n"
     "\n"
-    "exit status: 0 done, 2 bad scene or usage, 3 numerical instability (frames kept),\n"
-    "130 interrupted (frames kept), 1 other failure\n";
+    "exit status: 0 done, 2 bad scene or usage or a run too large, 3 numerical instability\n"
+    "(frames kept, the failing state in DIR/checkpoint_failed.h5), 130 interrupted (frames\n"
+    "kept, resumable), 1 other failure\n";
 
 // Refuses to overwrite another run; with --force removes the files a run writes.
 void prepare_directory(const fs::path& dir, bool force) {
@@ -60,61 +71,112 @@ void prepare_directory(const fs::path& dir, bool force) {
   if (force) {
     for (const auto& entry : fs::directory_iterator(dir)) {
       const auto ext = entry.path().extension();
-      const auto name = entry.path().filename();
+      const std::string name = entry.path().filename().string();
       if (name == "run.h5" || name == "run.xdmf" || ext == ".csv" || name == "run.xdmf.tmp" ||
-          name == "summary.json") fs::remove(entry.path());
+          name == "summary.json" || name.rfind("checkpoint", 0) == 0)
+        fs::remove(entry.path());
     }
   }
 }
 
-// The summary of a run that ended (or stopped) after `steps` steps.
-RunSummary summarize(const Simulation& sim, const RunWriter& writer, const SceneDescription& scene, int threads,
-                     long steps, double wall_seconds) {
-  RunSummary s;
-  s.steps = steps;
-  s.time = sim.time();
-  s.end_time = scene.time.end;
-  s.wall_seconds = wall_seconds;
-  s.threads = threads;
-  s.cores = static_cast<int>(std::thread::hardware_concurrency());
-  s.particles = sim.particles().size();
-  s.particle_steps_per_second = steps * static_cast<double>(s.particles) / std::max(wall_seconds, 1e-9);
-  s.peak_memory_mb = peak_resident_memory_mb();
-  s.frames = writer.frames_written();
-  s.program_version = kVersion;
-  s.git_revision = kGitRevision;
-  return s;
+Vec2 gravity_of(const SceneDescription& scene) {
+  const auto* g = scene.effect_parameters<GravityParameters>();
+  return g ? g->vector() : Vec2::Zero();
+}
+
+std::string command_line(const std::vector<std::string>& argv) {
+  std::string line = "bsmpm run";
+  for (const auto& a : argv) line += " " + a;
+  return line;
+}
+
+// The checkpoint's particles are this scene's: same count, each body's range holding its
+// own particles, every id once.
+void check_particles(const Particles& ps, const Simulation& sim, const std::string& path) {
+  const auto& bodies = sim.bodies();
+  bool ok = ps.size() == sim.particles().size();
+  std::vector<char> seen(ps.size(), 0);
+  for (std::size_t b = 0; ok && b < bodies.size(); ++b)
+    for (std::size_t p = bodies[b].begin; ok && p < bodies[b].end; ++p) {
+      ok = ps.body[p] == b && ps.id[p] < ps.size() && !seen[ps.id[p]] && sim.particles().body[sim.index_of_id()[ps.id[p]]] == b;
+      if (ok) seen[ps.id[p]] = 1;
+    }
+  if (!ok) throw IoError(path + ": its particles are not those of its scene");
+}
+
+int resume_run(const Arguments& args, const std::vector<std::string>& argv, int threads) {
+  if (!args.positional().empty() || !args.all("--set").empty() || args.has("--out") || args.flag("--force"))
+    throw UsageError("--resume DIR takes the scene and its overrides from the checkpoint: give no scene, --set, "
+                     "--out or --force");
+  const fs::path dir = args.option("--resume");
+  const fs::path path = checkpoint_path(dir);
+  if (!fs::exists(path)) {
+    if (fs::exists(dir / "run.h5") && RunReader((dir / "run.h5").string()).status() == "completed")
+      throw UsageError("the run in " + dir.string() + " is completed: nothing to resume");
+    throw UsageError(dir.string() + " holds no checkpoint.h5 to resume from (a run writes one when stopped, and "
+                     "every --checkpoint-every)");
+  }
+  Checkpoint c = read_checkpoint(path.string());
+  if (c.program_version != kVersion || c.git_revision != kGitRevision)
+    std::fprintf(stderr, "bsmpm: warning: the checkpoint was written by bsmpm %s (%s), this is %s (%s): the resumed "
+                 "run may differ from one never interrupted\n", c.program_version.c_str(), c.git_revision.c_str(),
+                 kVersion, kGitRevision);
+  const SceneDescription scene =
+      load_scene_text(c.scene.text, c.scene.path, c.scene.overrides, {render::render_scene_extension()});
+  const RunCost cost = predict_run_cost(scene);
+  const auto warnings = check_run_cost(scene, cost, machine_resources(""), true);
+  auto sim = build_simulation(scene);
+  check_particles(c.particles, *sim, path.string());
+  if (c.probes.size() != sim->probes().size()) throw IoError(path.string() + ": its probes are not those of its scene");
+  sim->restore(std::move(c.particles), c.counters, c.probes);
+  print_scene_summary(stdout, scene, *sim, threads);
+  print_run_cost(stdout, cost, warnings);
+  std::printf("resume   %s at step %ld, t = %.6g s (frame %ld)\n", dir.string().c_str(), sim->step_count(),
+              sim->time(), c.writer.frames);
+  RunWriter writer(dir.string(), c.writer, gravity_of(scene), *sim);
+  RunContext ctx{scene, *sim, writer, dir, threads, args.flag("--quiet"), {}, c.scene, c.wall_seconds};
+  if (args.has("--checkpoint-every")) ctx.schedule = CheckpointSchedule::parse(args.option("--checkpoint-every"));
+  ctx.checkpoint_scene.command_line += "; " + command_line(argv);
+  return drive_run(ctx, c.loop);
 }
 
 }  // namespace
 
 int command_run(const std::vector<std::string>& argv) {
-  Arguments args(argv, {"--help", "--force", "--quiet"}, {"--out", "--threads"}, {"--set"});
+  Arguments args(argv, {"--help", "--force", "--quiet"}, {"--out", "--threads", "--resume", "--checkpoint-every"},
+                 {"--set"});
   if (args.flag("--help")) {
     std::fputs(kHelp, stdout);
     return kOk;
   }
+  const int threads = apply_thread_option(args);
+  CheckpointSchedule schedule;
+  if (args.has("--checkpoint-every")) schedule = CheckpointSchedule::parse(args.option("--checkpoint-every"));
+  if (args.has("--resume")) return resume_run(args, argv, threads);
   if (args.positional().size() != 1) throw UsageError("run expects one scene file (see bsmpm run --help)");
   if (!args.has("--out")) throw UsageError("run needs --out DIR (see bsmpm run --help)");
-  const int threads = apply_thread_option(args);
-
-  // Validate and build everything before touching the disk: a bad scene leaves nothing.
-  const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"), {render::render_scene_extension()});
-  auto sim = build_simulation(scene);
   const fs::path dir = args.option("--out");
+
+  // Validate, predict and build everything before touching the disk: a bad scene, or one
+  // too large for this machine, leaves nothing.
+  const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"), {render::render_scene_extension()});
+  const RunCost cost = predict_run_cost(scene);
+  const auto warnings = check_run_cost(scene, cost, machine_resources(dir.string()), schedule.enabled());
+  auto sim = build_simulation(scene);
   prepare_directory(dir, args.flag("--force"));
   print_scene_summary(stdout, scene, *sim, threads);
+  print_run_cost(stdout, cost, warnings);
 
   RunProvenance prov;
   prov.title = scene.title;
   prov.scene_path = scene.path;
   prov.scene_text = scene.source_text;
   prov.effective_scene = scene.effective_text;
-  prov.command_line = "bsmpm run";
-  for (const auto& a : argv) prov.command_line += " " + a;
+  prov.command_line = command_line(argv);
   prov.threads = threads;
   prov.end_time = scene.time.end;
   prov.reference = scene.reference;
+  prov.gravity = gravity_of(scene);
 
   const bool created = !fs::exists(dir);
   fs::create_directories(dir);
@@ -125,81 +187,9 @@ int command_run(const std::vector<std::string>& argv) {
     if (created) fs::remove_all(dir);
     throw;
   }
-
-  const bool tty = isatty(STDERR_FILENO);
-  const double t_scale = scene.reference.time_factor();
-  RunHooks hooks;
-  hooks.stop = interrupted;
-  hooks.on_frame = [&](const Simulation& s, double dt) { writer->write_frame(s, dt); };
-  double last_line = -1e9;
-  if (!args.flag("--quiet"))
-    hooks.on_progress = [&](const RunProgress& p) {
-      if (!tty && p.wall_seconds - last_line < 10.0) return;
-      last_line = p.wall_seconds;
-      std::fprintf(stderr, "%sstep %ld  t = %.5f s (T* %.2f, %3.0f%%)  dt = %.2e s  %.0f steps/s  ETA %s%s",
-                   tty ? "\r" : "", p.step, p.time, p.time * t_scale, 100.0 * p.time / p.end_time, p.dt,
-                   p.steps_per_second, format_duration(p.eta_seconds).c_str(), tty ? "   " : "\n");
-      std::fflush(stderr);
-    };
-  catch_interruptions();
-
-  RunOutcome outcome;
-  const auto started = std::chrono::steady_clock::now();
-  // A failed run's summary: the steps it made and its wall time, no time-step range.
-  auto write_failure_summary = [&](const std::string& status, int exit_status) {
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    RunSummary s = summarize(*sim, *writer, scene, threads, sim->step_count(), wall);
-    s.status = status;
-    s.exit_status = exit_status;
-    write_run_summary(dir.string(), s);
-  };
-  try {
-    outcome = run_to_end(*sim, scene.time, scene.frame_interval, hooks);
-  } catch (const NumericalError& e) {
-    if (tty && !args.flag("--quiet")) std::fputc('\n', stderr);
-    writer->finish(std::string("failed: ") + e.what(), *sim, 0.0);
-    write_failure_summary(std::string("failed: ") + e.what(), kUnstable);
-    std::fprintf(stderr, "bsmpm: error: %s\nbsmpm: the %d frames written before the failure are in %s\n", e.what(),
-                 writer->frames_written(), writer->h5_path().c_str());
-    return kUnstable;
-  } catch (const std::exception& e) {
-    // A failed write (disk full, ...): the file says so instead of "running"; the frames
-    // flushed before it stay readable.
-    if (tty && !args.flag("--quiet")) std::fputc('\n', stderr);
-    try {
-      writer->finish(std::string("failed: ") + e.what(), *sim, 0.0);
-      write_failure_summary(std::string("failed: ") + e.what(), kFailure);
-    } catch (const std::exception&) {
-      // The file itself is what failed; main reports the first error.
-    }
-    throw;
-  }
-  if (tty && !args.flag("--quiet")) std::fputc('\n', stderr);
-  writer->finish(outcome.interrupted ? "interrupted" : "completed", *sim, outcome.last_dt);
-  {
-    RunSummary s = summarize(*sim, *writer, scene, threads, outcome.steps, outcome.wall_seconds);
-    s.status = outcome.interrupted ? "interrupted" : "completed";
-    s.exit_status = outcome.interrupted ? kInterrupted : kOk;
-    s.min_dt = outcome.min_dt;
-    s.max_dt = outcome.max_dt;
-    write_run_summary(dir.string(), s);
-  }
-
-  const double steps_per_s = outcome.steps / std::max(outcome.wall_seconds, 1e-9);
-  std::printf("%s  %ld steps in %.1f s: %.1f steps/s, %.3g particle-steps/s on %d threads; dt %.3g .. %.3g s\n",
-              outcome.interrupted ? "stopped" : "done   ", outcome.steps, outcome.wall_seconds, steps_per_s,
-              steps_per_s * sim->particles().size(), threads, outcome.min_dt, outcome.max_dt);
-  if (sim->stats().clamped_positions > 0)
-    std::printf("note     %ld particle positions were pushed back inside the domain\n", sim->stats().clamped_positions);
-  std::printf("wrote    %s (%d frames), %s/run.xdmf", writer->h5_path().c_str(), writer->frames_written(),
-              dir.string().c_str());
-  for (const auto& p : sim->probes()) std::printf(", %s/%s.csv", dir.string().c_str(), p->name().c_str());
-  std::printf(", %s/summary.json\n", dir.string().c_str());
-  if (outcome.interrupted) {
-    std::fprintf(stderr, "bsmpm: interrupted at t = %.5f s; the frames written so far are kept\n", sim->time());
-    return kInterrupted;
-  }
-  return kOk;
+  RunContext ctx{scene, *sim, *writer, dir, threads, args.flag("--quiet"), schedule,
+                 CheckpointScene{scene.path, scene.source_text, args.all("--set"), prov.command_line}, 0.0};
+  return drive_run(ctx, RunLoopState{});
 }
 
 }  // namespace bsmpm::cli

@@ -17,6 +17,7 @@ const char* kHelp =
     "\n"
     "commands\n"
     "  run SCENE --out DIR     simulate a scene; frames to DIR/run.h5 (+ .xdmf), probes to CSV\n"
+    "  run --resume DIR        continue an interrupted run from its checkpoint, bit for bit\n"
     "  check SCENE             validate a scene and print what a run would do\n"
     "  bench SCENE             time the step: ms per step, particle-steps per second\n"
     "  render RUN.h5 --out DIR draw frames of a run as PNG images (off screen), or a grid\n"
@@ -62,6 +63,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
     return cli::kBadInput;
   } catch (const UsageError& e) {
+    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
+    return cli::kBadInput;
+  } catch (const ResourceError& e) {
     std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
     return cli::kBadInput;
   } catch (const NumericalError& e) {

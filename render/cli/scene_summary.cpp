@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "scene/run_guards.hpp"
 #include "step/time_step.hpp"
 
 namespace bsmpm::cli {
@@ -26,6 +27,15 @@ void print_scene_summary(std::FILE* out, const SceneDescription& scene, const Si
   std::fprintf(out, "threads  %d\n", threads);
   std::fprintf(out, "effects\n");
   for (const auto& line : sim.describe_effects()) std::fprintf(out, "  - %s\n", line.c_str());
+  std::fflush(out);
+}
+
+void print_run_cost(std::FILE* out, const RunCost& cost, const std::vector<std::string>& warnings) {
+  std::fprintf(out, "cost     about %.4g particles, %.4g steps (dt %.3g s), %.4g particle-steps; memory %s, output %s "
+               "(%.0f frames), checkpoint %s\n",
+               cost.particles, cost.steps, cost.first_dt, cost.particle_steps, format_bytes(cost.memory_bytes).c_str(),
+               format_bytes(cost.output_bytes).c_str(), cost.frames, format_bytes(cost.checkpoint_bytes).c_str());
+  for (const std::string& w : warnings) std::fprintf(out, "warning  %s\n", w.c_str());
   std::fflush(out);
 }
 

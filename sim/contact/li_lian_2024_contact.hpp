@@ -80,7 +80,7 @@ class LiLian2024Contact final : public EffectBase<LiLian2024Contact<P>, P> {
 
   void find_shared_nodes(StepState<P>& st, const ContactPair& pair, PairState& ps) const;
   void measure_surfaces(StepState<P>& st, const ContactPair& pair, PairState& ps);
-  void correct(StepState<P>& st, const ContactPair& pair, PairState& ps, VelocityPhase phase) const;
+  void correct(StepState<P>& st, const ContactPair& pair, PairState& ps, VelocityPhase phase, std::size_t k) const;
 
   std::vector<ContactPair> pairs_;
   std::vector<std::string> body_names_;  // for describe()
@@ -114,6 +114,7 @@ std::string LiLian2024Contact<P>::describe() const {
 
 template <int P>
 void LiLian2024Contact<P>::constrain_velocity(StepState<P>& st, VelocityPhase phase) {
+  if (phase == VelocityPhase::kUpdate) st.diagnostics.contact.resize(pairs_.size());
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const ContactPair& pair = pairs_[k];
     PairState& ps = state_[k];
@@ -121,7 +122,7 @@ void LiLian2024Contact<P>::constrain_velocity(StepState<P>& st, VelocityPhase ph
       find_shared_nodes(st, pair, ps);
       if (pair.kind != ContactKind::kStick && pair.distance_check && !ps.nodes.empty()) measure_surfaces(st, pair, ps);
     }
-    correct(st, pair, ps, phase);
+    correct(st, pair, ps, phase, k);
   }
 }
 
@@ -196,8 +197,8 @@ void LiLian2024Contact<P>::measure_surfaces(StepState<P>& st, const ContactPair&
 }
 
 template <int P>
-void LiLian2024Contact<P>::correct(StepState<P>& st, const ContactPair& pair, PairState& ps,
-                                   VelocityPhase phase) const {
+void LiLian2024Contact<P>::correct(StepState<P>& st, const ContactPair& pair, PairState& ps, VelocityPhase phase,
+                                   std::size_t pair_index) const {
   const Body& r = st.bodies[pair.body_r];
   const Body& s = st.bodies[pair.body_s];
   GridLayer& Lr = st.layers[r.layer];
@@ -244,11 +245,21 @@ void LiLian2024Contact<P>::correct(StepState<P>& st, const ContactPair& pair, Pa
       impulse = normal_part + tangential;
     }
     // f^r = -f^s: momentum is exchanged, not created.
+    const Vec2 vr_before = vr, vs_before = vs;
     if (!rigid_r) vr += impulse / mr;
     if (!rigid_s) vs -= impulse / ms;
     if (update) {
-      st.diagnostics.contact_impulse += impulse.norm();
-      ++st.diagnostics.contact_nodes;
+      StepDiagnostics& d = st.diagnostics;
+      d.contact_impulse += impulse.norm();
+      ++d.contact_nodes;
+      d.contact[pair_index].nodes.push_back(n);
+      d.contact[pair_index].impulse.push_back(impulse);
+      // Between deformable bodies: the nodal kinetic energy the contact takes (StepDiagnostics::
+      // work). A rigid body moving at v_R does the work of its push, impulse . v_R dt / dt.
+      if (rigid_s) d.work.rigid_contact += impulse.dot(vs);
+      else if (rigid_r) d.work.rigid_contact -= impulse.dot(vr);
+      else d.work.contact += 0.5 * mr * (vr.squaredNorm() - vr_before.squaredNorm()) +
+                             0.5 * ms * (vs.squaredNorm() - vs_before.squaredNorm());
     }
   }
 }

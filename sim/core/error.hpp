@@ -55,6 +55,13 @@ class NumericalError : public Error {
   using Error::Error;
 };
 
+// A run that the machine cannot hold (memory, disk) or that would never end (a time step
+// absurdly small): refused before it starts, with the numbers.
+class ResourceError : public Error {
+ public:
+  using Error::Error;
+};
+
 // Wrong command-line usage.
 class UsageError : public Error {
  public:

@@ -71,6 +71,10 @@ Handle open_group(hid_t parent, const std::string& name) {
 
 bool exists(hid_t parent, const std::string& name) { return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0; }
 
+void remove_link(hid_t parent, const std::string& name) {
+  check(H5Ldelete(parent, name.c_str(), H5P_DEFAULT), "removing " + name);
+}
+
 std::vector<std::string> children(hid_t group) {
   std::vector<std::string> names;
   check(H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_name, &names), "listing a group");
@@ -124,25 +128,37 @@ Handle open_attribute(hid_t obj, const std::string& name) {
   if (!has_attribute(obj, name)) throw IoError("HDF5: missing attribute '" + name + "'");
   return Handle(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "opening attribute " + name);
 }
+
+// A scalar attribute is read into one value: an attribute of several elements (a damaged or
+// foreign file) would overflow it, so it is refused.
+Handle open_single_attribute(hid_t obj, const std::string& name) {
+  Handle attr = open_attribute(obj, name);
+  Handle space(H5Aget_space(attr), "attribute space");
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  if (n != 1)
+    throw IoError("HDF5: attribute '" + name + "' holds " + std::to_string(n) + " values where one was expected");
+  return attr;
+}
 }  // namespace
 
 double get_double_attribute(hid_t obj, const std::string& name) {
-  Handle attr = open_attribute(obj, name);
+  Handle attr = open_single_attribute(obj, name);
   double v = 0;
   check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "reading attribute " + name);
   return v;
 }
 
 long get_long_attribute(hid_t obj, const std::string& name) {
-  Handle attr = open_attribute(obj, name);
+  Handle attr = open_single_attribute(obj, name);
   long long v = 0;
   check(H5Aread(attr, H5T_NATIVE_LLONG, &v), "reading attribute " + name);
   return static_cast<long>(v);
 }
 
 std::string get_string_attribute(hid_t obj, const std::string& name) {
-  Handle attr = open_attribute(obj, name);
+  Handle attr = open_single_attribute(obj, name);
   Handle type(H5Aget_type(attr), "attribute type");
+  if (H5Tget_class(type) != H5T_STRING) throw IoError("HDF5: attribute '" + name + "' is not a string");
   if (H5Tis_variable_str(type) > 0) {
     char* s = nullptr;
     Handle mem(H5Tcopy(H5T_C_S1), "string type");
@@ -175,12 +191,17 @@ void write_dataset(hid_t parent, const std::string& name, const std::uint16_t* d
   write_typed(parent, name, data, rows, 1, H5T_STD_U16LE, H5T_NATIVE_UINT16);
 }
 
+void write_dataset(hid_t parent, const std::string& name, const std::uint32_t* data, std::size_t rows) {
+  write_typed(parent, name, data, rows, 1, H5T_STD_U32LE, H5T_NATIVE_UINT32);
+}
+
 std::vector<std::size_t> dataset_shape(hid_t parent, const std::string& name) {
   Handle set(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name);
   Handle space(H5Dget_space(set), "dataset space");
-  hsize_t dims[4] = {0, 0, 0, 0};
-  const int rank = H5Sget_simple_extent_dims(space, dims, nullptr);
-  return std::vector<std::size_t>(dims, dims + std::max(rank, 0));
+  const int rank = H5Sget_simple_extent_ndims(space);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+  if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  return std::vector<std::size_t>(dims.begin(), dims.end());
 }
 
 std::vector<double> read_doubles(hid_t parent, const std::string& name) {
@@ -192,13 +213,26 @@ std::vector<double> read_doubles(hid_t parent, const std::string& name) {
   return v;
 }
 
-std::vector<std::uint16_t> read_uint16(hid_t parent, const std::string& name) {
+namespace {
+template <class T>
+std::vector<T> read_integers(hid_t parent, const std::string& name, hid_t mem_type) {
   if (!exists(parent, name)) throw IoError("HDF5: missing dataset '" + name + "'");
   Handle set(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name);
   Handle space(H5Dget_space(set), "dataset space");
-  std::vector<std::uint16_t> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
-  if (!v.empty()) check(H5Dread(set, H5T_NATIVE_UINT16, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "reading " + name);
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  if (n < 0) throw IoError("HDF5: dataset '" + name + "' has no size");
+  std::vector<T> v(static_cast<std::size_t>(n));
+  if (!v.empty()) check(H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), "reading " + name);
   return v;
+}
+}  // namespace
+
+std::vector<std::uint16_t> read_uint16(hid_t parent, const std::string& name) {
+  return read_integers<std::uint16_t>(parent, name, H5T_NATIVE_UINT16);
+}
+
+std::vector<std::uint32_t> read_uint32(hid_t parent, const std::string& name) {
+  return read_integers<std::uint32_t>(parent, name, H5T_NATIVE_UINT32);
 }
 
 RowAppender::RowAppender(hid_t parent, const std::string& name, std::size_t cols) : cols_(cols), name_(name) {
@@ -208,6 +242,24 @@ RowAppender::RowAppender(hid_t parent, const std::string& name, std::size_t cols
   check(H5Pset_chunk(props, 2, chunk), "chunking " + name);
   dataset_ = Handle(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, props, H5P_DEFAULT),
                     "creating dataset " + name);
+}
+
+RowAppender RowAppender::reopen(hid_t parent, const std::string& name, std::size_t rows) {
+  RowAppender a;
+  a.name_ = name;
+  a.dataset_ = Handle(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "opening dataset " + name);
+  Handle space(H5Dget_space(a.dataset_), "dataset space");
+  hsize_t dims[2] = {0, 0};
+  if (H5Sget_simple_extent_ndims(space) != 2) throw IoError("HDF5: dataset '" + name + "' is not a table");
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  if (rows > dims[0])
+    throw IoError("HDF5: dataset '" + name + "' holds " + std::to_string(dims[0]) + " rows, fewer than the " +
+                  std::to_string(rows) + " expected");
+  a.cols_ = dims[1];
+  a.rows_ = rows;
+  const hsize_t cut[2] = {rows, dims[1]};
+  check(H5Dset_extent(a.dataset_, cut), "cutting " + name);
+  return a;
 }
 
 void RowAppender::append(const double* rows, std::size_t count) {

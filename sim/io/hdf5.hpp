@@ -4,6 +4,7 @@
 
 #include <hdf5.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,7 @@ Handle open_file(const std::string& path, bool writable = false);
 Handle create_group(hid_t parent, const std::string& name);
 Handle open_group(hid_t parent, const std::string& name);
 bool exists(hid_t parent, const std::string& name);
+void remove_link(hid_t parent, const std::string& name);  // a group or dataset (space is not reclaimed)
 std::vector<std::string> children(hid_t group);  // link names, in name order
 
 void set_attribute(hid_t obj, const std::string& name, double value);
@@ -50,15 +52,19 @@ std::vector<double> get_doubles_attribute(hid_t obj, const std::string& name);
 // Row-major datasets of `rows` x `cols` (cols = 1 writes a 1-D dataset).
 void write_dataset(hid_t parent, const std::string& name, const double* data, std::size_t rows, std::size_t cols);
 void write_dataset(hid_t parent, const std::string& name, const std::uint16_t* data, std::size_t rows);
+void write_dataset(hid_t parent, const std::string& name, const std::uint32_t* data, std::size_t rows);
 std::vector<std::size_t> dataset_shape(hid_t parent, const std::string& name);
 std::vector<double> read_doubles(hid_t parent, const std::string& name);  // any numeric type
 std::vector<std::uint16_t> read_uint16(hid_t parent, const std::string& name);
+std::vector<std::uint32_t> read_uint32(hid_t parent, const std::string& name);
 
 // A 2-D double dataset that grows by rows (chunked, unlimited first dimension).
 class RowAppender {
  public:
   RowAppender() = default;
   RowAppender(hid_t parent, const std::string& name, std::size_t cols);
+  // The existing dataset `name`, cut to its first `rows` rows (a resumed run continues there).
+  static RowAppender reopen(hid_t parent, const std::string& name, std::size_t rows);
   void append(const double* rows, std::size_t count);
   std::size_t rows() const { return rows_; }
 

@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/version.hpp"
+#include "diagnostics/conservation.hpp"
 #include "io/particle_fields.hpp"
 
 namespace bsmpm {
@@ -61,7 +62,8 @@ void write_particle_field(hid_t group, const ParticleField& field, const Simulat
 }  // namespace
 
 RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, const Simulation& sim)
-    : directory_(directory), h5_path_(directory + "/run.h5"), xdmf_path_(directory + "/run.xdmf") {
+    : directory_(directory), h5_path_(directory + "/run.h5"), xdmf_path_(directory + "/run.xdmf"),
+      gravity_(prov.gravity) {
   file_ = h5::create_file(h5_path_);
   h5::set_attribute(file_, "format", std::string("bsmpm-run"));
   h5::set_attribute(file_, "format_version", 1L);
@@ -121,17 +123,119 @@ RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, co
       for (std::size_t c = 0; c < cols.size(); ++c) joined += (c ? "," : "") + cols[c];
       h5::set_attribute(set, "columns", joined);
       h5::set_attribute(set, "description", probe->describe());
-      const std::string csv = directory_ + "/" + probe->name() + ".csv";
-      std::FILE* f = std::fopen(csv.c_str(), "w");
-      if (!f) throw IoError(csv + ": cannot create");
-      probe_csv_.emplace_back(f);
-      std::fprintf(f, "# %s\n", probe->describe().c_str());
-      for (std::size_t c = 0; c < cols.size(); ++c) std::fprintf(f, "%s%s", c ? "," : "", cols[c].c_str());
-      std::fprintf(f, "\n");
+      open_csv(directory_ + "/" + probe->name() + ".csv", probe->describe(), cols);
       probe_rows_done_.push_back(0);
     }
   }
+  {
+    const auto& cols = conservation_columns();
+    conservation_set_ = h5::RowAppender(file_, "conservation", cols.size());
+    h5::Handle set(H5Dopen2(file_, "conservation", H5P_DEFAULT), "conservation dataset");
+    std::string joined;
+    for (std::size_t c = 0; c < cols.size(); ++c) joined += (c ? "," : "") + cols[c];
+    h5::set_attribute(set, "columns", joined);
+    open_csv(directory_ + "/conservation.csv", "mass, momentum, energy and work of the deformable bodies per frame (docs/output-format.md)", cols);
+    conservation_csv_ = std::move(probe_csv_.back());
+    probe_csv_.pop_back();
+  }
   H5Fflush(file_, H5F_SCOPE_GLOBAL);
+}
+
+// A CSV with a comment line and a header row.
+void RunWriter::open_csv(const std::string& path, const std::string& comment, const std::vector<std::string>& columns) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw IoError(path + ": cannot create");
+  probe_csv_.emplace_back(f);
+  std::fprintf(f, "# %s\n", comment.c_str());
+  for (std::size_t c = 0; c < columns.size(); ++c) std::fprintf(f, "%s%s", c ? "," : "", columns[c].c_str());
+  std::fprintf(f, "\n");
+}
+
+namespace {
+
+// The file cut to `bytes` and opened for appending.
+std::FILE* reopen_cut(const std::string& path, std::uint64_t bytes) {
+  std::error_code error;
+  if (std::filesystem::file_size(path, error) < bytes || error)
+    throw IoError(path + ": shorter than at the checkpoint (" + std::to_string(bytes) + " bytes)");
+  std::filesystem::resize_file(path, bytes);
+  std::FILE* f = std::fopen(path.c_str(), "a");
+  if (!f) throw IoError(path + ": cannot open for appending");
+  return f;
+}
+
+// "/frames/NNNNNN" names: the frame index they hold, or -1.
+long frame_index(const std::string& name) {
+  if (name.size() != 6 || name.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return std::stol(name);
+}
+
+}  // namespace
+
+RunWriter::RunWriter(const std::string& directory, const RunWriterState& at, Vec2 gravity, const Simulation& sim)
+    : directory_(directory), h5_path_(directory + "/run.h5"), xdmf_path_(directory + "/run.xdmf"), gravity_(gravity) {
+  file_ = h5::open_file(h5_path_, true);
+  frames_ = h5::open_group(file_, "frames");
+  particle_count_ = sim.particles().size();
+  // Frames after the checkpoint go; those before it stay, in order.
+  for (const std::string& name : h5::children(frames_)) {
+    const long index = frame_index(name);
+    if (index < 0 || index >= at.frames) {
+      h5::remove_link(frames_, name);
+      continue;
+    }
+    h5::Handle g = h5::open_group(frames_, name);
+    frame_names_.push_back(name);
+    frame_times_.push_back(h5::get_double_attribute(g, "time"));
+    last_frame_step_ = h5::get_long_attribute(g, "step");
+  }
+  if (static_cast<long>(frame_names_.size()) != at.frames)
+    throw IoError(h5_path_ + ": holds " + std::to_string(frame_names_.size()) + " of the " + std::to_string(at.frames) +
+                  " frames written before the checkpoint");
+  const auto& probes = sim.probes();
+  if (at.probe_rows.size() != probes.size() || at.csv_bytes.size() != probes.size() + 1)
+    throw IoError(h5_path_ + ": the checkpoint does not match the scene's probes");
+  h5::Handle g = h5::open_group(file_, "probes");
+  for (std::size_t k = 0; k < probes.size(); ++k) {
+    probe_sets_.push_back(h5::RowAppender::reopen(g, probes[k]->name(), at.probe_rows[k]));
+    probe_csv_.emplace_back(reopen_cut(directory_ + "/" + probes[k]->name() + ".csv", at.csv_bytes[k]));
+    probe_rows_done_.push_back(at.probe_rows[k]);
+  }
+  conservation_set_ = h5::RowAppender::reopen(file_, "conservation", at.conservation_rows);
+  conservation_csv_.reset(reopen_cut(directory_ + "/conservation.csv", at.csv_bytes.back()));
+  h5::set_attribute(file_, "status", std::string("running"));
+  h5::set_attribute(file_, "frames_written", static_cast<long>(frames_written()));
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw IoError(h5_path_ + ": flush failed");
+  write_xdmf();
+}
+
+RunWriterState RunWriter::state(const Simulation& sim) {
+  flush_probes(sim);
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw IoError(h5_path_ + ": flush failed");
+  RunWriterState s;
+  s.frames = frames_written();
+  auto bytes = [](std::FILE* f) {
+    if (std::fflush(f) != 0) throw IoError("a CSV file: flush failed");
+    const long at = std::ftell(f);
+    if (at < 0) throw IoError("a CSV file: cannot tell its length");
+    return static_cast<std::uint64_t>(at);
+  };
+  for (std::size_t k = 0; k < probe_sets_.size(); ++k) {
+    s.probe_rows.push_back(probe_rows_done_[k]);
+    s.csv_bytes.push_back(bytes(probe_csv_[k].get()));
+  }
+  s.conservation_rows = conservation_set_.rows();
+  s.csv_bytes.push_back(bytes(conservation_csv_.get()));
+  return s;
+}
+
+// One row of the conservation series per frame (docs/output-format.md).
+void RunWriter::write_conservation(const Simulation& sim) {
+  const std::vector<double> row = conservation_row(measure_conservation(sim, gravity_));
+  conservation_set_.append(row.data(), 1);
+  for (std::size_t c = 0; c < row.size(); ++c) std::fprintf(conservation_csv_.get(), "%s%.17g", c ? "," : "", row[c]);
+  std::fprintf(conservation_csv_.get(), "\n");
+  if (std::fflush(conservation_csv_.get()) != 0) throw IoError(directory_ + "/conservation.csv: write failed");
 }
 
 void RunWriter::flush_probes(const Simulation& sim) {
@@ -165,6 +269,7 @@ void RunWriter::write_frame(const Simulation& sim, double dt) {
 
   frame_times_.push_back(sim.time());
   frame_names_.push_back(name);
+  write_conservation(sim);
   flush_probes(sim);
   h5::set_attribute(file_, "frames_written", static_cast<long>(frames_written()));
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw IoError(h5_path_ + ": flush failed");

@@ -30,6 +30,19 @@ struct ElasticSolid {
     return std::sqrt((lame_lambda() + 2.0 * shear_modulus()) * J / density);
   }
 
+  // Strain energy per unit reference volume, whose derivative gives stress() (plane strain,
+  // F_zz = 1): Neo-Hookean mu/2 (tr(F^T F) - 2) - mu ln J + lambda/2 (ln J)^2;
+  // Saint Venant-Kirchhoff lambda/2 tr(E)^2 + mu tr(E^2).
+  double stored_energy(const Mat2& F) const {
+    const double lambda = lame_lambda(), mu = shear_modulus();
+    if (model == ElasticModel::kNeoHookean) {
+      const double lnJ = std::log(F.determinant());
+      return 0.5 * mu * (F.squaredNorm() - 2.0) - mu * lnJ + 0.5 * lambda * lnJ * lnJ;
+    }
+    const Mat2 E = 0.5 * (F.transpose() * F - Mat2::Identity());
+    return 0.5 * lambda * E.trace() * E.trace() + mu * E.squaredNorm();
+  }
+
   Mat2 stress(const Mat2& F) const {
     const double J = F.determinant();
     const double lambda = lame_lambda(), mu = shear_modulus();

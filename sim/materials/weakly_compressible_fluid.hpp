@@ -46,6 +46,15 @@ struct WeaklyCompressibleFluid {
     return 1.0 / std::pow(1.0 + tait_gamma * p / bulk_modulus, 1.0 / tait_gamma);
   }
 
+  // Energy stored by compression per unit reference volume, w(J) = -int_1^J p(s) ds, so that
+  // p = -dw/dJ (the tension cut-off min_pressure is left out):
+  //  linear: K (J - 1 - ln J);  Tait: K/g ((J^(1-g) - 1)/(g - 1) + J - 1).
+  double stored_energy(double J) const {
+    if (eos == EquationOfState::kLinear) return bulk_modulus * (J - 1.0 - std::log(J));
+    const double g = tait_gamma;
+    return bulk_modulus / g * ((J * tait_power(1.0 / J) - 1.0) / (g - 1.0) + J - 1.0);
+  }
+
   // c = sqrt(dp/drho).
   double sound_speed(double J) const {
     double c2 = bulk_modulus / density;

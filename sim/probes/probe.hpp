@@ -27,6 +27,13 @@ struct ReferenceScales {
   double pressure_scale() const;   // rho g H
 };
 
+// What a probe carries from step to step: its next sample time and its rows (a checkpoint
+// holds them, so a resumed run samples at the same times).
+struct ProbeState {
+  double next_time = -1.0e300;
+  std::vector<double> data;  // row-major, row_count() x columns().size()
+};
+
 class Probe {
  public:
   Probe(std::string name, double interval) : name_(std::move(name)), interval_(interval) {}
@@ -42,6 +49,11 @@ class Probe {
   std::size_t row_count() const { return columns_count() ? data_.size() / columns_count() : 0; }
   const double* row(std::size_t r) const { return data_.data() + r * columns_count(); }
   const std::vector<double>& data() const { return data_; }
+  ProbeState state() const { return {next_time_, data_}; }
+  void restore(ProbeState state) {
+    next_time_ = state.next_time;
+    data_ = std::move(state.data);
+  }
 
  protected:
   virtual void sample(const ProbeContext& ctx, double* row) = 0;

@@ -176,6 +176,7 @@ void read_probes(TableReader& root, SceneDescription& s, const SceneTables& scen
     ProbeDescription p;
     p.name = t.string("name");
     if (!std::regex_match(p.name, valid_name)) t.fail("name", "use letters, digits, '_', '-' and '.' only (it names a file)");
+    if (p.name == "conservation") t.fail("name", "\"conservation\" is the run's own series (conservation.csv)");
     for (const auto& other : s.probes)
       if (other.name == p.name) t.fail("name", "a probe named \"" + p.name + "\" already exists");
     const std::string type = t.choice("type", {"wall_pressure", "surface_pressure", "material_point", "front"});
@@ -267,6 +268,11 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
                                                      : SolverSettings::FluidVolume::kProjected;
     }
     s.solver.shifting = solver->number_or("particle_shifting", 0.0, Range::closed(0.0, 0.5));
+    const Vec2 range = solver->vec2_or("density_range", Vec2(s.solver.min_density_ratio, s.solver.max_density_ratio),
+                                       Range::positive());
+    if (!(range.x() < 1.0 && range.y() > 1.0)) solver->fail("density_range", "must be [low, high] with low < 1 < high");
+    s.solver.min_density_ratio = range.x();
+    s.solver.max_density_ratio = range.y();
   }
   std::map<std::string, Material> materials;
   {

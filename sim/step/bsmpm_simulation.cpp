@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -61,7 +62,8 @@ template <int P>
 BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
                                     std::vector<std::unique_ptr<Effect<P>>> effects,
                                     std::vector<std::unique_ptr<Probe>> probes)
-    : st_(std::move(state)), settings_(settings), effects_(std::move(effects)), probes_(std::move(probes)) {
+    : st_(std::move(state)), settings_(settings), effects_(std::move(effects)), probes_(std::move(probes)),
+      j_min_(1.0 / settings.max_density_ratio), j_max_(1.0 / settings.min_density_ratio) {
   // The order of the effects' phases, not the order they were given in (EffectPhase).
   std::stable_sort(effects_.begin(), effects_.end(),
                    [](const auto& a, const auto& b) { return a->phase() < b->phase(); });
@@ -138,24 +140,40 @@ void BsmpmSimulation<P>::sample_probes() {
 }
 
 template <int P>
+void BsmpmSimulation<P>::restore(Particles particles, const StepCounters& counters,
+                                 const std::vector<ProbeState>& probes) {
+  if (particles.size() != st_.particles.size() || probes.size() != probes_.size())
+    throw std::invalid_argument("restore: the state is not of this scene");
+  st_.particles = std::move(particles);
+  for (std::size_t p = 0; p < st_.particles.size(); ++p) st_.index_of_id[st_.particles.id[p]] = p;
+  st_.time = counters.time;
+  st_.step = counters.step;
+  max_signal_speed_ = counters.max_signal_speed;
+  stats_ = counters.stats;
+  for (std::size_t k = 0; k < probes.size(); ++k) probes_[k]->restore(probes[k]);
+}
+
+template <int P>
 void BsmpmSimulation<P>::advance(double dt) {
   st_.dt = dt;
-  st_.diagnostics = StepDiagnostics{};
+  st_.diagnostics.reset();
   if (settings_.sort_interval > 0 && st_.step > 0 && st_.step % settings_.sort_interval == 0)
     sort_particles_by_cell();
   compute_weights();
   particle_to_grid();                       // eqs. 5-7
   for (auto* e : force_hooks_) e->grid_forces(st_);  // eq. 8
   update_grid_velocity(dt);                 // eqs. 9-10 and the essential conditions
+  stats_.work += st_.diagnostics.work;      // what the constraints did to the motion
   if (settings_.velocity_update == SolverSettings::VelocityUpdate::kApic) move_particles_and_remap_momentum<true>(dt);
   else move_particles_and_remap_momentum<false>(dt);  // eqs. 11-13
   update_remap_velocity();                  // eq. 13 and the essential conditions again
   const DeformationUpdate update = update_deformation_and_stress(dt);  // eq. 14 and the constitutive update
   max_signal_speed_ = update.max_signal_speed;  // bounds the next time step (CFL)
-  if (update.invalid) throw_instability(dt);
   clear_grid();
   st_.time += dt;
   ++st_.step;
+  // After the counters: the state the error describes (and the run writes out) is this step's.
+  if (update.invalid) throw_instability();
   sample_probes();
 }
 
@@ -469,7 +487,7 @@ void BsmpmSimulation<P>::update_remap_velocity() {
 
 // Per body, visiting its material once: the deformation from the remapped velocities
 // (eq. 14), then the stress. The fastest signal bounds the next time step; a particle whose
-// state turned non-finite or inverted makes the step invalid.
+// state turned non-finite or left the density range makes the step invalid.
 template <int P>
 typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_deformation_and_stress(double dt) {
   DeformationUpdate all;
@@ -535,7 +553,8 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
       ps.pressure[p] = pressure;
       ps.stress[p] = mat.template stress<decltype(viscous)::value>(pressure, L);
       body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
-      body_invalid = body_invalid || !(J > 0.0) || !std::isfinite(pressure) || !ps.v[p].allFinite();
+      body_invalid = body_invalid || !density_in_range(J) || !std::isfinite(pressure) || !ps.v[p].allFinite() ||
+                     !ps.x[p].allFinite();
     }
   };
   // Viscosity only when mu > 0: the inviscid loop has no deviatoric term at all.
@@ -563,7 +582,8 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
     ps.stress[p] = sigma;
     ps.pressure[p] = -0.5 * sigma.trace();
     body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
-    body_invalid = body_invalid || !(J > 0.0) || !sigma.allFinite() || !ps.v[p].allFinite();
+    body_invalid = body_invalid || !density_in_range(J) || !sigma.allFinite() || !ps.v[p].allFinite() ||
+                   !ps.x[p].allFinite();
   }
   return {body_speed, body_invalid};
 }
@@ -575,25 +595,35 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
   return {SignalSpeed{1.0, 0.0}(mat), false};
 }
 
-// Names the first invalid particle (a NumericalError the run reports and stops on).
+// Names the first invalid particle and the field that is wrong (a NumericalError the run
+// reports and stops on; the field names are those of io/particle_fields).
 template <int P>
-void BsmpmSimulation<P>::throw_instability(double dt) const {
+void BsmpmSimulation<P>::throw_instability() const {
   const auto& ps = st_.particles;
   for (std::size_t p = 0; p < ps.size(); ++p) {
-    if (ps.J[p] > 0.0 && std::isfinite(ps.pressure[p]) && ps.stress[p].allFinite() && ps.v[p].allFinite() &&
-        ps.x[p].allFinite())
-      continue;
+    const Body& body = st_.bodies[ps.body[p]];
+    if (std::holds_alternative<RigidBody>(body.material)) continue;
+    std::string field;
+    if (!ps.x[p].allFinite()) field = "position is not finite";
+    else if (!ps.v[p].allFinite()) field = "velocity is not finite";
+    else if (!std::isfinite(ps.pressure[p])) field = "pressure is not finite";
+    else if (!ps.stress[p].allFinite()) field = "stress_tensor is not finite";
+    else if (!std::isfinite(ps.J[p])) field = "volume_ratio is not finite";
+    else if (!density_in_range(ps.J[p]))
+      field = format("density %.4g rho0 (volume_ratio J = %.4g) is outside the range [%g, %g] rho0 (solver.density_range)",
+                     1.0 / ps.J[p], ps.J[p], settings_.min_density_ratio, settings_.max_density_ratio);
+    else continue;
     throw NumericalError(format(
-        "numerical instability at step %ld (t = %.6g s): particle %u of body '%s' at (%.4g, %.4g) has J = %.3g, "
-        "p = %.3g, |v| = %.3g; reduce the time step (time.cfl or time.dt)",
-        st_.step + 1, st_.time + dt, ps.id[p], st_.bodies[ps.body[p]].name.c_str(), ps.x[p].x(), ps.x[p].y(), ps.J[p],
-        ps.pressure[p], ps.v[p].norm()));
+        "numerical instability at step %ld (t = %.6g s): body '%s', particle %u at (%.4g, %.4g): %s "
+        "(|v| = %.3g m/s, p = %.3g Pa); reduce the time step (time.cfl or time.dt)",
+        st_.step, st_.time, body.name.c_str(), ps.id[p], ps.x[p].x(), ps.x[p].y(), field.c_str(), ps.v[p].norm(),
+        ps.pressure[p]));
   }
-  throw NumericalError("numerical instability at step " + std::to_string(st_.step + 1) +
-                       ": a non-finite state; reduce the time step (time.cfl or time.dt)");
+  throw NumericalError(format("numerical instability at step %ld (t = %.6g s): a non-finite state; reduce the time "
+                              "step (time.cfl or time.dt)", st_.step, st_.time));
 }
 
-// Smoothing of the fluid's volume ratio through the grid (solver.smooth_fluid_volume):
+// Smoothing of the fluid's volume ratio through the grid (solver.fluid_volume = "smoothed"):
 // at each control point a mass-weighted least-squares linear fit of the particles' J around
 // its Greville point, J ~ J_I + g_I . (x - xi_I), then J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)).
 // It removes the particle-to-particle pressure noise of weakly compressible MPM. A plain

@@ -35,6 +35,7 @@ class BsmpmSimulation final : public Simulation {
   std::vector<std::string> describe_effects() const override;
   const std::vector<std::unique_ptr<Probe>>& probes() const override { return probes_; }
   void sample_probes() override;
+  void restore(Particles particles, const StepCounters& counters, const std::vector<ProbeState>& probes) override;
 
   // Exposed for the unit tests of the transfers.
   StepState<P>& state() { return st_; }
@@ -51,7 +52,7 @@ class BsmpmSimulation final : public Simulation {
   void update_remap_velocity();
   struct DeformationUpdate {
     double max_signal_speed = 0.0;  // largest c + |v|: bounds the next time step
-    bool invalid = false;           // some particle's state is non-finite or inverted
+    bool invalid = false;           // some particle's state is non-finite or its density out of range
   };
   // One body's particles [begin, end) and the remapped velocities of its grid field.
   struct BodyParticles {
@@ -63,7 +64,8 @@ class BsmpmSimulation final : public Simulation {
   DeformationUpdate update_body(const BodyParticles& body, const WeaklyCompressibleFluid& fluid, double dt);
   DeformationUpdate update_body(const BodyParticles& body, const ElasticSolid& solid, double dt);
   DeformationUpdate update_body(const BodyParticles& body, const RigidBody& rigid, double dt);
-  [[noreturn]] void throw_instability(double dt) const;
+  [[noreturn]] void throw_instability() const;
+  bool density_in_range(double J) const { return J >= j_min_ && J <= j_max_; }
   void smooth_volume_ratio(std::size_t body_index);
   void clear_grid();
   void constrain(VelocityPhase phase);
@@ -74,7 +76,7 @@ class BsmpmSimulation final : public Simulation {
   std::vector<Effect<P>*> force_hooks_, velocity_hooks_;
   std::vector<std::unique_ptr<Probe>> probes_;
   static constexpr int kMoments = 9;
-  std::vector<double> smoothing_moments_;  // per control point, only with smooth_fluid_volume
+  std::vector<double> smoothing_moments_;  // per control point, only with FluidVolume::kSmoothed
   std::vector<double> greville_x_, greville_y_;
   Vec2 affine_floor_ = Vec2::Zero();        // APIC: floor of D_p's diagonal [m2]
   std::vector<double> inverse_integral_x_, inverse_integral_y_;  // 1 / integral of N_i (particle shifting)
@@ -82,6 +84,7 @@ class BsmpmSimulation final : public Simulation {
   DilatationProjection<P> projection_;      // only with FluidVolume::kProjected
   std::vector<double> increment_scratch_;
   double max_signal_speed_ = 0.0;
+  double j_min_ = 0.0, j_max_ = 0.0;  // the density range as volume ratios J = rho0 / rho
   SimulationStats stats_;
 };
 

@@ -2,7 +2,10 @@
 // three spline orders (the order is a template parameter inside; see bsmpm_simulation.hpp).
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -36,19 +39,83 @@ struct SolverSettings {
     kProjected,  // the increment projected onto the splines one degree lower (F-bar)
   };
   FluidVolume fluid_volume = FluidVolume::kParticle;
-  // Particle shifting (docs/method.md §4): fluid particles drift down the gradient of the
+  // Particle shifting (docs/method.md §10): fluid particles drift down the gradient of the
   // grid's volume fraction, D = shifting h^2 per step; 0 = off (the paper).
   double shifting = 0.0;
+  // rho / rho0 = 1 / J that a deformable particle may reach: beyond it the step stops the
+  // run as numerically unstable (solver.density_range; docs/method.md §2).
+  double min_density_ratio = 0.5, max_density_ratio = 2.0;
 };
 
-// What the last step did, for tests and diagnostics.
+// What the essential conditions did to the motion in the update phase of a step
+// (docs/method.md §2, step 5) [J/m]. Walls, clamps and contact between deformable bodies are
+// at rest relative to what they hold: their mechanical work is zero, and what is recorded is
+// the nodal kinetic energy they take, m_I (|v_after|^2 - |v_before|^2) / 2 summed over the
+// control points (<= 0: the inelastic loss of an impact). A rigid body moving at v_R pushes
+// with the impulse it gives: its work is impulse . v_R, work from outside.
+// The remap phase (step 7) is left out: it shapes the strain increment, not the motion.
+struct ConstraintWork {
+  double walls = 0.0;          // kinetic energy the tank walls take (<= 0)
+  double clamps = 0.0;         // kinetic energy the clamps take (<= 0)
+  double contact = 0.0;        // kinetic energy contact between deformable bodies takes (<= 0)
+  double rigid_contact = 0.0;  // work of the rigid bodies' push on the deformable ones
+
+  ConstraintWork& operator+=(const ConstraintWork& o) {
+    walls += o.walls;
+    clamps += o.clamps;
+    contact += o.contact;
+    rigid_contact += o.rigid_contact;
+    return *this;
+  }
+  // The work done from outside the deformable bodies (gravity aside, which their potential
+  // energy holds): only moving rigid bodies do any.
+  double external() const { return rigid_contact; }
+};
+
+// The impulses of one contact pair in the update phase: on body r, at the control points
+// where a contact force acted (body s received the opposite, unless rigid) [N s/m].
+struct ContactImpulses {
+  std::vector<int> nodes;
+  std::vector<Vec2> impulse;
+};
+
+// What the last step did, for tests and diagnostics (and, later, wall-pressure sensors).
 struct StepDiagnostics {
   int contact_nodes = 0;         // control points where a contact force acted
   double contact_impulse = 0.0;  // sum of |f_contact| dt over them [N s / m]
+  ConstraintWork work;           // this step's work of the constraints
+  // Per wall side (WallSide), per control point along it (index j on the left and right
+  // walls, i on the bottom and top): the impulse m_I (v_after - v_before) the wall gave the
+  // deformable fields [N s/m]; its normal part over dt is the wall's reaction force there.
+  std::array<std::vector<Vec2>, 4> wall_impulse;
+  std::vector<ContactImpulses> contact;  // per pair of the contact effect
+
+  // Zeroes everything for the next step, keeping the arrays' storage.
+  void reset() {
+    contact_nodes = 0;
+    contact_impulse = 0.0;
+    work = ConstraintWork{};
+    for (auto& side : wall_impulse) std::fill(side.begin(), side.end(), Vec2::Zero());
+    for (auto& pair : contact) {
+      pair.nodes.clear();
+      pair.impulse.clear();
+    }
+  }
 };
 
+// Counters over the whole run (a checkpoint holds them).
 struct SimulationStats {
   long clamped_positions = 0;  // particle positions pushed back inside the domain
+  ConstraintWork work;         // the constraints' work since t = 0 [J/m]
+};
+
+// The state of a run between two steps beyond its particles, which a checkpoint holds so
+// that a resumed run continues bit for bit.
+struct StepCounters {
+  double time = 0.0;
+  long step = 0;
+  double max_signal_speed = 0.0;  // bounds the next time step (docs/method.md §7)
+  SimulationStats stats;
 };
 
 class Simulation {
@@ -69,6 +136,13 @@ class Simulation {
   virtual int layer_count() const = 0;
   virtual const SimulationStats& stats() const = 0;
   virtual const StepDiagnostics& last_step() const = 0;
+  StepCounters counters() const { return {time(), step_count(), max_signal_speed(), stats()}; }
+  // Replaces the particles (in slot order, as particles() holds them), the counters and the
+  // probes' states with a checkpoint's; the next advance() then continues as the run that
+  // wrote it would have. The particles must be those this scene seeds (same count and bodies).
+  virtual void restore(Particles, const StepCounters&, const std::vector<ProbeState>&) {
+    throw std::logic_error("this simulation cannot be restored from a checkpoint");
+  }
   // The effects this scene composed, one line each, in the order the step runs them.
   virtual std::vector<std::string> describe_effects() const = 0;
   virtual const std::vector<std::unique_ptr<Probe>>& probes() const = 0;

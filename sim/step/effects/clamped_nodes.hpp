@@ -89,8 +89,14 @@ class ClampedNodes final : public EffectBase<ClampedNodes<P>, P> {
   }
   void constrain_velocity(StepState<P>& st, VelocityPhase phase) override {
     for (const auto& c : clamps_) {
-      auto& v = phase_velocity(st.layers[c.layer], phase);
-      for (int n : c.nodes) v[n].setZero();
+      GridLayer& layer = st.layers[c.layer];
+      auto& v = phase_velocity(layer, phase);
+      for (int n : c.nodes) {
+        // The clamp takes the kinetic energy of its control points (StepDiagnostics::work).
+        if (phase == VelocityPhase::kUpdate && layer.mass[n] > st.mass_cutoff)
+          st.diagnostics.work.clamps -= 0.5 * layer.mass[n] * v[n].squaredNorm();
+        v[n].setZero();
+      }
     }
   }
 

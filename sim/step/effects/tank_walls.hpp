@@ -45,11 +45,15 @@ class TankWalls final : public EffectBase<TankWalls<P>, P> {
  public:
   using Parameters = TankWallParameters;
   static constexpr EffectPhase kPhase = EffectPhase::kWalls;
-  static std::unique_ptr<Effect<P>> create(const Parameters& p, const StepState<P>&) {
-    return std::make_unique<TankWalls>(p.kinds);
+  static std::unique_ptr<Effect<P>> create(const Parameters& p, const StepState<P>& st) {
+    std::vector<char> rigid(st.layers.size(), 0);
+    for (const Body& b : st.bodies)
+      if (is_rigid(b.material)) rigid[b.layer] = 1;
+    return std::make_unique<TankWalls>(p.kinds, std::move(rigid));
   }
 
-  explicit TankWalls(std::array<WallKind, 4> kinds) : kinds_(kinds) {}
+  TankWalls(std::array<WallKind, 4> kinds, std::vector<char> rigid_layer = {})
+      : kinds_(kinds), rigid_layer_(std::move(rigid_layer)) {}
 
   std::string describe() const override {
     std::string s = "tank walls:";
@@ -60,6 +64,11 @@ class TankWalls final : public EffectBase<TankWalls<P>, P> {
 
   void constrain_velocity(StepState<P>& st, VelocityPhase phase) override {
     const int nx = st.grid.nx(), ny = st.grid.ny();
+    const bool update = phase == VelocityPhase::kUpdate;
+    auto& impulse = st.diagnostics.wall_impulse;
+    if (update) {
+      impulse[kLeft].resize(ny); impulse[kRight].resize(ny); impulse[kBottom].resize(nx); impulse[kTop].resize(nx);
+    }
     held_.resize(st.layers.size());
     for (std::size_t l = 0; l < st.layers.size(); ++l) {
       GridLayer& layer = st.layers[l];
@@ -68,12 +77,21 @@ class TankWalls final : public EffectBase<TankWalls<P>, P> {
       auto& held = held_[l];
       held[kLeft].resize(ny); held[kRight].resize(ny); held[kBottom].resize(nx); held[kTop].resize(nx);
       const NodeBox& b = layer.active;
-      const bool update = phase == VelocityPhase::kUpdate;
-      if (b.i0 == 0) for (int j = b.j0; j < b.j1; ++j) apply(v[j], kLeft, 0, -1.0, held[kLeft][j], update);
-      if (b.i1 == nx)
-        for (int j = b.j0; j < b.j1; ++j) apply(v[(nx - 1) * ny + j], kRight, 0, 1.0, held[kRight][j], update);
-      if (b.j0 == 0) for (int i = b.i0; i < b.i1; ++i) apply(v[i * ny], kBottom, 1, -1.0, held[kBottom][i], update);
-      if (b.j1 == ny) for (int i = b.i0; i < b.i1; ++i) apply(v[i * ny + ny - 1], kTop, 1, 1.0, held[kTop][i], update);
+      // The update phase records what the wall did to a deformable field (StepDiagnostics):
+      // the impulse per control point and the work; a rigid body's field is prescribed.
+      const bool record = update && !(l < rigid_layer_.size() && rigid_layer_[l]);
+      auto hold = [&](int n, int side, int axis, double outward, int k) {
+        const Vec2 before = v[n];
+        apply(v[n], side, axis, outward, held[side][k], update);
+        if (!record || !(layer.mass[n] > st.mass_cutoff)) return;
+        const double m = layer.mass[n];
+        impulse[side][k] += m * (v[n] - before);
+        st.diagnostics.work.walls += 0.5 * m * (v[n].squaredNorm() - before.squaredNorm());
+      };
+      if (b.i0 == 0) for (int j = b.j0; j < b.j1; ++j) hold(j, kLeft, 0, -1.0, j);
+      if (b.i1 == nx) for (int j = b.j0; j < b.j1; ++j) hold((nx - 1) * ny + j, kRight, 0, 1.0, j);
+      if (b.j0 == 0) for (int i = b.i0; i < b.i1; ++i) hold(i * ny, kBottom, 1, -1.0, i);
+      if (b.j1 == ny) for (int i = b.i0; i < b.i1; ++i) hold(i * ny + ny - 1, kTop, 1, 1.0, i);
     }
   }
 
@@ -91,6 +109,7 @@ class TankWalls final : public EffectBase<TankWalls<P>, P> {
     }
   }
   std::array<WallKind, 4> kinds_;
+  std::vector<char> rigid_layer_;  // per grid field: a rigid body's (prescribed, not recorded)
   std::vector<std::array<std::vector<char>, 4>> held_;  // per layer, per side, per control point
 };
 

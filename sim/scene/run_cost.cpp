@@ -1,0 +1,118 @@
+#include "scene/run_cost.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bspline/clamped_bspline.hpp"
+#include "contact/contact_parameters.hpp"
+#include "io/particle_fields.hpp"
+#include "step/effects/gravity.hpp"
+
+namespace bsmpm {
+
+namespace {
+
+// Particles a body's shape will hold (particles/seeding.cpp): a rectangle is split into whole
+// spacings per axis; other shapes hold about area / spacing^2.
+double particle_count(const Shape& shape, const Vec2& spacing) {
+  if (const auto* r = std::get_if<Rectangle>(&shape)) {
+    const Vec2 size = r->max - r->min;
+    const double nx = std::max(1.0, std::round(size.x() / spacing.x()));
+    const double ny = std::max(1.0, std::round(size.y() / spacing.y()));
+    return nx * ny;
+  }
+  return std::max(1.0, area(shape) / spacing.prod());
+}
+
+// Bytes of one value of every particle field with `use` (io/particle_fields).
+double field_bytes(unsigned use) {
+  double bytes = 0.0;
+  for (const ParticleField& f : particle_fields()) {
+    if (!(f.use & use)) continue;
+    const double size = f.type == FieldType::kUInt16 ? 2.0 : f.type == FieldType::kUInt32 ? 4.0 : 8.0;
+    bytes += size * f.components;
+  }
+  return bytes;
+}
+
+// The wave speed of a material at rest (docs/method.md §7), 0 for a rigid body.
+double wave_speed(const Material& m) {
+  if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&m)) return f->sound_speed(1.0);
+  if (const auto* e = std::get_if<ElasticSolid>(&m)) return e->wave_speed(1.0);
+  return 0.0;
+}
+
+}  // namespace
+
+RunCost predict_run_cost(const SceneDescription& scene) {
+  RunCost c;
+  const Vec2 h = scene.actual_cell_size();
+  const Vec2 spacing = h / scene.particles_per_cell;
+  for (const BodyDescription& b : scene.bodies) c.particles += particle_count(b.shape, spacing);
+
+  const ContactParameters* contacts = scene.effect_parameters<ContactParameters>();
+  c.grid_fields = contacts && !contacts->pairs.empty() ? static_cast<int>(scene.bodies.size()) : 1;
+  c.control_points = double(scene.cells_x() + scene.order) * double(scene.cells_y() + scene.order);
+
+  // Memory of the running step: every particle array, the 1-D weights of one step (2 ints
+  // and 4 (P + 1) doubles), the slot of each id and the scatter order (4 + 4 bytes), the
+  // velocity gradients kept by the volume smoothing or projection (and the projection's
+  // increments); per control point and field the mass and five vectors (GridLayer), a mass
+  // gradient and a contact slot with contact, a volume with particle shifting, the nine
+  // moments of the volume smoothing or the projection's two sums.
+  using FluidVolume = SolverSettings::FluidVolume;
+  const FluidVolume volume = scene.solver.fluid_volume;
+  const double per_particle = field_bytes(kCheckpointState) + 8.0 + 32.0 * (scene.order + 1) + 8.0 +
+                              (volume == FluidVolume::kSmoothed ? 32.0 : 0.0) +
+                              (volume == FluidVolume::kProjected ? 40.0 : 0.0);
+  const double per_node = c.grid_fields * (8.0 + 5 * 16.0 + (contacts ? 16.0 + 4.0 : 0.0) +
+                                           (scene.solver.shifting > 0.0 ? 8.0 : 0.0)) +
+                          (volume == FluidVolume::kSmoothed ? 72.0 : 0.0) +
+                          (volume == FluidVolume::kProjected ? 16.0 : 0.0);
+  constexpr double kProgramBytes = 64.0 * 1024 * 1024;  // the program and its libraries
+  c.memory_bytes = c.particles * per_particle + c.control_points * per_node + kProgramBytes;
+
+  // The fastest signal: a fall from the highest fluid to the floor gives the flow speed
+  // sqrt(2 g dz); every body adds its own wave speed (and its initial or prescribed speed).
+  const GravityParameters* gravity = scene.effect_parameters<GravityParameters>();
+  double top = -1e300;
+  for (const BodyDescription& b : scene.bodies)
+    if (is_fluid(b.material)) top = std::max(top, bounding_box(b.shape).max.y());
+  if (gravity && top > scene.domain_min.y()) c.flow_speed = std::sqrt(2.0 * gravity->g * (top - scene.domain_min.y()));
+  for (const BodyDescription& b : scene.bodies) {
+    const double own = is_rigid(b.material) ? std::get<RigidBody>(b.material).velocity.norm() : b.velocity.norm();
+    const double speed = wave_speed(b.material) + own + (is_fluid(b.material) ? c.flow_speed : 0.0);
+    if (speed > c.signal_speed) {
+      c.signal_speed = speed;
+      c.stiffest_body = b.name;
+      c.wave_speed = wave_speed(b.material);
+    }
+  }
+  const double h_min = std::min(h.x(), h.y());
+  c.stable_dt = c.signal_speed > 0.0 ? h_min / c.signal_speed : 1e300;
+  const TimeStepSettings& t = scene.time;
+  if (t.mode == TimeStepSettings::Mode::kFixed) c.first_dt = t.dt;
+  else c.first_dt = c.signal_speed > 0.0 ? std::min(t.max_dt, t.cfl * c.stable_dt) : t.max_dt;
+  c.frames = std::floor(t.end / scene.frame_interval + 1e-9) + 1.0 +
+             (std::fmod(t.end, scene.frame_interval) > 1e-9 * scene.frame_interval ? 1.0 : 0.0);
+  c.steps = std::ceil(t.end / c.first_dt) + c.frames;  // a landing on each frame time may add one
+  c.particle_steps = c.steps * c.particles;
+
+  // run.h5: the header fields once, the frame fields per frame; probe series in run.h5 and
+  // as CSV text (about 16 characters a value); the conservation series per frame.
+  double probe_values = 0.0;
+  for (const ProbeDescription& p : scene.probes) {
+    const double rows = p.interval > 0.0 ? t.end / p.interval + 1.0 : c.steps;
+    const double columns = p.kind == ProbeDescription::Kind::kMaterialPoint ? 5.0
+                           : p.kind == ProbeDescription::Kind::kFront        ? 3.0
+                                                                             : 4.0;
+    probe_values += rows * columns;
+  }
+  constexpr double kConservationColumns = 14.0;
+  c.output_bytes = c.particles * field_bytes(kInRunHeader) + c.frames * c.particles * field_bytes(kInFrames) +
+                   (probe_values + c.frames * kConservationColumns) * (8.0 + 16.0) + 64.0 * 1024;
+  c.checkpoint_bytes = c.particles * field_bytes(kCheckpointState) + probe_values * 8.0 + 64.0 * 1024;
+  return c;
+}
+
+}  // namespace bsmpm

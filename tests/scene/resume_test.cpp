@@ -1,0 +1,160 @@
+// Checkpoint and resume through the program: a run stopped by SIGINT or SIGTERM, or killed
+// (SIGKILL) between two checkpoints, and resumed with bsmpm run --resume, ends with frames,
+// probe series, conservation rows and CSV files bit-identical to those of the run that was
+// never interrupted; frames and rows continue without a gap or a duplicate.
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "io/hdf5.hpp"
+#include "io/particle_fields.hpp"
+#include "test_support.hpp"
+
+using namespace bsmpm;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::vector<std::string> kSceneArgs = {"--set", "grid.cell_size=0.01", "--set", "output.frame_interval=0.01",
+                                             "--set", "time.end=0.12", "--quiet", "--threads", "1"};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Runs the program with `args`; returns the wait status. `stop_when(dir)` true sends `signal`.
+template <class Stop>
+int run_program(const std::vector<std::string>& args, int signal, Stop stop_when, const fs::path& dir) {
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
+    std::vector<char*> argv{const_cast<char*>(BSMPM_EXECUTABLE)};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(BSMPM_EXECUTABLE, argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (signal != 0 && std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return status;  // ended before the signal
+    if (stop_when(dir)) {
+      kill(pid, signal);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+std::vector<std::string> run_args(const fs::path& dir, const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> a = {"run", test::scene_path("lobovsky_h300.toml"), "--out", dir.string()};
+  a.insert(a.end(), kSceneArgs.begin(), kSceneArgs.end());
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
+std::vector<unsigned char> dataset_bytes(hid_t parent, const std::string& name) {
+  const std::vector<double> v = h5::read_doubles(parent, name);
+  std::vector<unsigned char> out(v.size() * sizeof(double));
+  if (!v.empty()) std::memcpy(out.data(), v.data(), out.size());
+  return out;
+}
+
+// Every frame (each particle field of the table that frames hold, and time, step, dt), every
+// probe series and the conservation series, compared bit for bit; and the CSV files.
+void require_identical_runs(const fs::path& a, const fs::path& b) {
+  h5::Handle fa = h5::open_file((a / "run.h5").string()), fb = h5::open_file((b / "run.h5").string());
+  CHECK(h5::get_string_attribute(fb, "status") == "completed");
+  CHECK(h5::get_long_attribute(fa, "steps") == h5::get_long_attribute(fb, "steps"));
+  h5::Handle ga = h5::open_group(fa, "frames"), gb = h5::open_group(fb, "frames");
+  const auto names = h5::children(ga);
+  REQUIRE(names.size() == 13);  // t = 0, 0.01, ..., 0.12: no gap, no duplicate
+  REQUIRE(h5::children(gb) == names);
+  for (const auto& name : names) {
+    h5::Handle x = h5::open_group(ga, name), y = h5::open_group(gb, name);
+    for (const char* attr : {"time", "dt"}) CHECK(h5::get_double_attribute(x, attr) == h5::get_double_attribute(y, attr));
+    CHECK(h5::get_long_attribute(x, "step") == h5::get_long_attribute(y, "step"));
+    for (const ParticleField& field : particle_fields())
+      if (field.has(kInFrames)) {
+        INFO("frame " << name << ", field " << field.name);
+        CHECK(dataset_bytes(x, std::string(field.name)) == dataset_bytes(y, std::string(field.name)));
+      }
+  }
+  h5::Handle pa = h5::open_group(fa, "probes"), pb = h5::open_group(fb, "probes");
+  for (const auto& probe : h5::children(pa)) {
+    INFO("probe " << probe);
+    CHECK(dataset_bytes(pa, probe) == dataset_bytes(pb, probe));
+    CHECK(read_text(a / (probe + ".csv")) == read_text(b / (probe + ".csv")));
+  }
+  CHECK(dataset_bytes(fa, "conservation") == dataset_bytes(fb, "conservation"));
+  CHECK(h5::dataset_shape(fb, "conservation")[0] == names.size());
+  CHECK(read_text(a / "conservation.csv") == read_text(b / "conservation.csv"));
+  CHECK(!fs::exists(b / "checkpoint.h5"));  // removed once the run completed
+  CHECK(!fs::exists(b / "checkpoint.h5.tmp"));
+}
+
+fs::path uninterrupted() {
+  static const fs::path dir = [] {
+    const fs::path d = test::scratch_dir("resume_reference") / "run";
+    REQUIRE(WEXITSTATUS(run_program(run_args(d), 0, [](const fs::path&) { return false; }, d)) == 0);
+    return d;
+  }();
+  return dir;
+}
+
+// Frames on disk, as the XDMF sidecar lists them.
+int frames_listed(const fs::path& dir) {
+  const std::string x = read_text(dir / "run.xdmf");
+  int n = 0;
+  for (auto at = x.find("<Grid Name=\"frame"); at != std::string::npos; at = x.find("<Grid Name=\"frame", at + 1)) ++n;
+  return n;
+}
+
+int resume(const fs::path& dir) {
+  const int status =
+      run_program({"run", "--resume", dir.string(), "--quiet", "--threads", "1"}, 0, [](const fs::path&) { return false; }, dir);
+  REQUIRE(WIFEXITED(status));
+  return WEXITSTATUS(status);
+}
+
+}  // namespace
+
+TEST_CASE("A run stopped by SIGINT or SIGTERM resumes bit for bit", "[cli][checkpoint]") {
+  const int signal = GENERATE(SIGINT, SIGTERM);
+  const fs::path dir = test::scratch_dir(signal == SIGINT ? "resume_sigint" : "resume_sigterm") / "run";
+  const int status = run_program(run_args(dir), signal, [](const fs::path& d) { return frames_listed(d) >= 4; }, dir);
+  REQUIRE(WIFEXITED(status));
+  REQUIRE(WEXITSTATUS(status) == 130);
+  REQUIRE(fs::exists(dir / "checkpoint.h5"));  // written when stopped
+  CHECK(resume(dir) == 0);
+  require_identical_runs(uninterrupted(), dir);
+}
+
+TEST_CASE("A run killed between checkpoints resumes from the last one bit for bit", "[cli][checkpoint]") {
+  const fs::path dir = test::scratch_dir("resume_sigkill") / "run";
+  // Killed some frames after the first checkpoint: frames, probe rows and CSV lines written
+  // after it must go, and come back the same.
+  const int status = run_program(run_args(dir, {"--checkpoint-every", "0.03s"}), SIGKILL,
+                                 [](const fs::path& d) { return fs::exists(d / "checkpoint.h5") && frames_listed(d) >= 6; },
+                                 dir);
+  REQUIRE(WIFSIGNALED(status));
+  // As if the kill had come while the next checkpoint was being written: its temporary is
+  // half there, and the last whole checkpoint is the one to resume from.
+  std::ofstream(dir / "checkpoint.h5.tmp") << "half a checkpoint";
+  CHECK(resume(dir) == 0);
+  require_identical_runs(uninterrupted(), dir);
+  // Resuming a completed run is refused.
+  CHECK(resume(dir) == 2);
+}
