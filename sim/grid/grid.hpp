@@ -54,6 +54,10 @@ struct GridLayer {
   bool tracks_mass_gradient = false;
   NodeBox active;                       // nodes written this step
 
+  std::size_t bytes() const {
+    return heap_bytes(mass) + heap_bytes(momentum) + heap_bytes(force) + heap_bytes(velocity) +
+           heap_bytes(velocity_increment) + heap_bytes(remap_velocity) + heap_bytes(mass_gradient);
+  }
   void resize(int n) {
     mass.assign(n, 0.0);
     momentum.assign(n, Vec2::Zero());

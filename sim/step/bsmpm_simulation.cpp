@@ -82,6 +82,20 @@ GridInfo BsmpmSimulation<P>::grid_info() const {
 }
 
 template <int P>
+MemoryUse BsmpmSimulation<P>::memory_use() const {
+  MemoryUse m;
+  m.particles = st_.particles.size();
+  m.control_points = static_cast<std::size_t>(st_.grid.node_count());
+  m.particle_bytes = st_.particles.bytes() + heap_bytes(st_.weights) + heap_bytes(st_.index_of_id) +
+                     heap_bytes(gradient_scratch_) + heap_bytes(sort_key_) + heap_bytes(sort_order_) +
+                     permute_scratch_.bytes();
+  for (const StripSchedule& s : st_.schedules) m.particle_bytes += s.bytes();
+  m.grid_bytes = heap_bytes(smoothing_moments_) + heap_bytes(sort_start_);  // one counter per cell
+  for (const GridLayer& layer : st_.layers) m.grid_bytes += layer.bytes();
+  return m;
+}
+
+template <int P>
 std::vector<std::string> BsmpmSimulation<P>::describe_effects() const {
   std::vector<std::string> lines;
   for (const Body& b : st_.bodies)
@@ -94,19 +108,24 @@ std::vector<std::string> BsmpmSimulation<P>::describe_effects() const {
 template <int P>
 void BsmpmSimulation<P>::sample_probes() {
   if (probes_.empty()) return;
+  const PhaseScope timed(st_.timer, StepPhase::kProbes);
   const ProbeContext ctx{st_.particles, st_.bodies, st_.index_of_id, st_.time};
   for (auto& probe : probes_) probe->maybe_sample(ctx);
 }
 
 template <int P>
 void BsmpmSimulation<P>::advance(double dt) {
+  const PhaseScope timed(st_.timer, StepPhase::kOther);  // each phase times itself (phase_timer.hpp)
   st_.dt = dt;
   st_.diagnostics = StepDiagnostics{};
   if (settings_.sort_interval > 0 && st_.step > 0 && st_.step % settings_.sort_interval == 0)
     sort_particles_by_cell();
   compute_weights();
   particle_to_grid();                       // eqs. 5-7
-  for (auto* e : force_hooks_) e->grid_forces(st_);  // eq. 8
+  for (auto* e : force_hooks_) {  // eq. 8
+    const PhaseScope timed(st_.timer, StepPhase::kEffects);
+    e->grid_forces(st_);
+  }
   update_grid_velocity(dt);                 // eqs. 9-10 and the essential conditions
   move_particles_and_remap_momentum(dt);    // eqs. 11-13
   update_remap_velocity();                  // eq. 13 and the essential conditions again
@@ -120,30 +139,35 @@ void BsmpmSimulation<P>::advance(double dt) {
 }
 
 // Particles of each body sorted by cell (x-major, like the control points), so that the
-// scatter and gather walk the grid in order.
+// scatter and gather walk the grid in order. A counting sort: stable (the order a stable
+// comparison sort gives), linear in the particles and cells, and into buffers kept from one
+// sort to the next, so that it allocates nothing after the first.
 template <int P>
 void BsmpmSimulation<P>::sort_particles_by_cell() {
+  const PhaseScope timed(st_.timer, StepPhase::kSort);
   auto& ps = st_.particles;
   const int cy = st_.grid.by.cells();
-  std::vector<std::uint32_t> order;
-  std::vector<std::int64_t> key;
+  const std::size_t cells = std::size_t(st_.grid.bx.cells()) * cy;
   for (const Body& b : st_.bodies) {
     const std::size_t n = b.size();
-    key.resize(n);
-    order.resize(n);
+    sort_key_.resize(n);
+    sort_order_.resize(n);
+    sort_start_.assign(cells + 1, 0);
     for (std::size_t k = 0; k < n; ++k) {
       const Vec2& x = ps.x[b.begin + k];
-      key[k] = std::int64_t(st_.grid.bx.cell_of(x.x())) * cy + st_.grid.by.cell_of(x.y());
+      sort_key_[k] = std::uint32_t(st_.grid.bx.cell_of(x.x())) * cy + st_.grid.by.cell_of(x.y());
+      ++sort_start_[sort_key_[k] + 1];
     }
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t c) { return key[a] < key[c]; });
-    ps.permute(b.begin, order);
+    std::partial_sum(sort_start_.begin(), sort_start_.end(), sort_start_.begin());
+    for (std::size_t k = 0; k < n; ++k) sort_order_[sort_start_[sort_key_[k]]++] = static_cast<std::uint32_t>(k);
+    ps.permute(b.begin, sort_order_, permute_scratch_);
   }
   for (std::size_t p = 0; p < ps.size(); ++p) st_.index_of_id[ps.id[p]] = static_cast<std::uint32_t>(p);
 }
 
 template <int P>
 void BsmpmSimulation<P>::compute_weights() {
+  const PhaseScope timed(st_.timer, StepPhase::kWeights);
   auto& ps = st_.particles;
   const long n = static_cast<long>(ps.size());
 #pragma omp parallel for schedule(static)
@@ -169,6 +193,7 @@ void BsmpmSimulation<P>::compute_weights() {
 
 template <int P>
 void BsmpmSimulation<P>::particle_to_grid() {
+  const PhaseScope timed(st_.timer, StepPhase::kParticleToGrid);
   for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
     // Mass gradients only for fields that take part in contact (their normals).
     if (st_.layers[st_.bodies[b].layer].tracks_mass_gradient) scatter_body<true>(b);
@@ -203,11 +228,16 @@ void BsmpmSimulation<P>::scatter_body(std::size_t b) {
 
 template <int P>
 void BsmpmSimulation<P>::constrain(VelocityPhase phase) {
-  for (auto* e : velocity_hooks_) e->constrain_velocity(st_, phase);
+  for (auto* e : velocity_hooks_) {
+    const PhaseScope timed(st_.timer, st_.timer && e->phase() == EffectPhase::kContact ? StepPhase::kContact
+                                                                                         : StepPhase::kEffects);
+    e->constrain_velocity(st_, phase);
+  }
 }
 
 template <int P>
 void BsmpmSimulation<P>::update_grid_velocity(double dt) {
+  const PhaseScope timed(st_.timer, StepPhase::kGridUpdate);
   const int ny = st_.grid.ny();
   const double cut = st_.mass_cutoff;
   for (auto& layer : st_.layers)
@@ -255,6 +285,7 @@ inline void scatter(const ParticleWeights<P>& w, const Vec2& q, std::vector<Vec2
 // (eq. 13; update_remap_velocity() divides it by the nodal mass).
 template <int P>
 void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
+  const PhaseScope timed(st_.timer, StepPhase::kGridToParticle);
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
   const double flip = settings_.flip_fraction;
@@ -294,6 +325,7 @@ void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
 // conditions again: the strain increment (eq. 14) is taken from it.
 template <int P>
 void BsmpmSimulation<P>::update_remap_velocity() {
+  const PhaseScope timed(st_.timer, StepPhase::kGridUpdate);
   const int ny = st_.grid.ny();
   const double cut = st_.mass_cutoff;
   for (auto& layer : st_.layers)
@@ -310,6 +342,7 @@ void BsmpmSimulation<P>::update_remap_velocity() {
 // state turned non-finite or inverted makes the step invalid.
 template <int P>
 typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_deformation_and_stress(double dt) {
+  const PhaseScope timed(st_.timer, StepPhase::kStress);
   DeformationUpdate all;
   for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
     const Body& body = st_.bodies[b];
@@ -432,6 +465,7 @@ void BsmpmSimulation<P>::throw_instability(double dt) const {
 // the step's weights S_Ip(x^k) only localise the fit, which stays exact for linear fields.
 template <int P>
 void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
+  const PhaseScope timed(st_.timer, StepPhase::kSmoothing);
   const int ny = st_.grid.ny();
   const double ihx = 1.0 / st_.grid.cell_size().x(), ihy = 1.0 / st_.grid.cell_size().y();
   const std::vector<double>& gx = greville_x_;
@@ -514,6 +548,7 @@ void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
 
 template <int P>
 void BsmpmSimulation<P>::clear_grid() {
+  const PhaseScope timed(st_.timer, StepPhase::kClearGrid);
   const int ny = st_.grid.ny();
   for (auto& layer : st_.layers) {
     const NodeBox& b = layer.active;

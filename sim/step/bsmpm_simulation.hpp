@@ -34,6 +34,8 @@ class BsmpmSimulation final : public Simulation {
   std::vector<std::string> describe_effects() const override;
   const std::vector<std::unique_ptr<Probe>>& probes() const override { return probes_; }
   void sample_probes() override;
+  void set_phase_timer(PhaseTimer* timer) override { st_.timer = timer; }
+  MemoryUse memory_use() const override;
 
   // Exposed for the unit tests of the transfers.
   StepState<P>& state() { return st_; }
@@ -75,6 +77,8 @@ class BsmpmSimulation final : public Simulation {
   std::vector<double> smoothing_moments_;  // per control point, only with smooth_fluid_volume
   std::vector<double> greville_x_, greville_y_;
   std::vector<Mat2> gradient_scratch_;
+  std::vector<std::uint32_t> sort_key_, sort_order_, sort_start_;  // sort_particles_by_cell()
+  Particles::PermuteScratch permute_scratch_;
   double max_signal_speed_ = 0.0;
   SimulationStats stats_;
 };

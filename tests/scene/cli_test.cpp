@@ -115,13 +115,16 @@ TEST_CASE("bsmpm run refuses an occupied --out and one that cannot be created", 
 
 namespace {
 
-// The fields of a flat JSON object, checked to be valid JSON by Python's parser (a
-// dependency of scripts/setup), one "key=value" line each; lists become "a,b".
+// The fields of a JSON object, checked to be valid JSON by Python's parser (a dependency of
+// scripts/setup), one "key=value" line each; lists become "a,b", and the members of a nested
+// object "key.member=value".
 std::map<std::string, std::string> json_fields(const std::string& json) {
   const fs::path in = scratch() / "bench.json", out = scratch() / "bench.fields";
   std::ofstream(in) << json;
   const std::string cmd = "python3 -c \"import json, sys; d = json.load(open(sys.argv[1])); "
-                          "[print(k + '=' + (','.join(map(str, v)) if isinstance(v, list) else str(v))) for k, v in d.items()]\" " +
+                          "[print(k + '=' + (','.join(map(str, v)) if isinstance(v, list) else str(v))) for k, v in d.items() "
+                          "if not isinstance(v, dict)]; "
+                          "[print(k + '.' + m + '=' + str(u)) for k, v in d.items() if isinstance(v, dict) for m, u in v.items()]\" " +
                           in.string() + " > " + out.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   INFO(test::read_text(out));
@@ -141,7 +144,7 @@ TEST_CASE("bsmpm bench --json prints one valid JSON object with the run's facts"
   // A scene path that needs escaping in JSON: a double quote and a backslash in its name.
   const fs::path scene = scratch() / "tank \"quoted\" \\ name.toml";
   fs::copy_file(kScene, scene, fs::copy_options::overwrite_existing);
-  const auto r = bsmpm_with("bench '" + scene.string() + "' --steps 3 --warmup 1 --threads 2 --json");
+  const auto r = bsmpm_with("bench '" + scene.string() + "' --steps 3 --warmup 1 --threads 2 --set time.end=1 --json");
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
@@ -160,5 +163,26 @@ TEST_CASE("bsmpm bench --json prints one valid JSON object with the run's facts"
   CHECK(seconds > 0.0);
   CHECK(per_step == Approx(seconds / 3).epsilon(1e-4));
   CHECK(rate == Approx(6400 * 3 / seconds).epsilon(1e-4));
-  CHECK(f.size() == 11);
+  CHECK(f.at("overrides") == "time.end=1");
+  // Memory: the grid has (40 + 2) x (60 + 2) control points at order 2; a particle holds at
+  // least its position, velocity, mass, volume, J, F, stress and weights (> 150 bytes).
+  CHECK(f.at("control_points") == std::to_string(42 * 62));
+  CHECK(std::stod(f.at("bytes_per_particle")) > 150.0);
+  CHECK(std::stod(f.at("bytes_per_control_point")) > 50.0);
+  // The phases: exclusive, so that they add up to the time per step (to the clock's
+  // resolution); this scene's steps have each of these.
+  double sum = 0.0;
+  std::size_t phases = 0;
+  for (const auto& [key, value] : f)
+    if (key.rfind("phase_seconds_per_step.", 0) == 0) {
+      sum += std::stod(value);
+      ++phases;
+    }
+  for (const char* phase : {"weights", "particle_to_grid", "effects", "grid_update", "grid_to_particle", "stress",
+                            "clear_grid"}) {
+    INFO(phase);
+    CHECK(std::stod(f.at(std::string("phase_seconds_per_step.") + phase)) > 0.0);
+  }
+  CHECK(sum == Approx(per_step).epsilon(0.01));
+  CHECK(f.size() - phases == 15);
 }
