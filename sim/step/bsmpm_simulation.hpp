@@ -78,6 +78,7 @@ class BsmpmSimulation final : public Simulation {
   std::vector<double> greville_x_, greville_y_;
   std::vector<Mat2> gradient_scratch_;
   std::vector<std::uint32_t> sort_key_, sort_order_, sort_start_;  // sort_particles_by_cell()
+  std::vector<int> column_scratch_;  // compute_weights(): each particle's first column
   Particles::PermuteScratch permute_scratch_;
   double max_signal_speed_ = 0.0;
   SimulationStats stats_;
