@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <thread>
 #include <utility>
@@ -32,6 +33,14 @@ const char* kHelp =
     "(\"outside\" is the bench loop between steps, \"other\" the step outside every phase); and\n"
     "the solver's heap bytes per particle and per control point. --json prints one JSON object\n"
     "instead (a record for scripts/bench --compare).\n";
+
+// How idle OpenMP threads wait: as the environment says; main.cpp sets PASSIVE when it says
+// nothing (or, should that have failed, libgomp spins for a while: "default").
+std::string omp_wait_policy() {
+  if (const char* policy = std::getenv("OMP_WAIT_POLICY")) return policy;
+  if (const char* spin = std::getenv("GOMP_SPINCOUNT")) return std::string("GOMP_SPINCOUNT=") + spin;
+  return "default";
+}
 
 // The phases with any time, in step order, as (name, seconds per step).
 std::vector<std::pair<const char*, double>> phase_table(const PhaseTimer& timer, long steps) {
@@ -74,15 +83,16 @@ int command_bench(const std::vector<std::string>& argv) {
   const double per_step = wall / steps;
   const double rate = n * steps / wall;
   const unsigned cores = std::thread::hardware_concurrency();
+  const std::string wait_policy = omp_wait_policy();
   if (args.flag("--json")) {
     std::string overrides;
     for (const std::string& o : args.all("--set")) overrides += (overrides.empty() ? "" : ", ") + json_quoted(o);
     std::printf("{\"scene\": %s, \"overrides\": [%s], \"particles\": %zu, \"order\": %d, \"cells\": [%d, %d], \"cell_size\": [%g, %g], "
-                "\"threads\": %d, \"cores\": %u, \"steps\": %ld, \"seconds\": %.6g, \"seconds_per_step\": %.6g, "
+                "\"threads\": %d, \"cores\": %u, \"omp_wait_policy\": %s, \"steps\": %ld, \"seconds\": %.6g, \"seconds_per_step\": %.6g, "
                 "\"particle_steps_per_second\": %.6g, \"control_points\": %zu, \"bytes_per_particle\": %.6g, "
                 "\"bytes_per_control_point\": %.6g, \"phase_seconds_per_step\": {",
                 json_quoted(scene.path).c_str(), overrides.c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(),
-                threads, cores, steps, wall, per_step, rate, mem.control_points, per_particle, per_node);
+                threads, cores, json_quoted(wait_policy).c_str(), steps, wall, per_step, rate, mem.control_points, per_particle, per_node);
     for (std::size_t k = 0; k < phases.size(); ++k)
       std::printf("%s\"%s\": %.6g", k ? ", " : "", phases[k].first, phases[k].second);
     std::printf("}}\n");
@@ -91,7 +101,7 @@ int command_bench(const std::vector<std::string>& argv) {
     std::printf("grid                 %d x %d cells of %.4g mm, order %d\n", g.cells_x, g.cells_y, g.cell_size.x() * 1e3,
                 g.order);
     std::printf("particles            %zu\n", n);
-    std::printf("threads / cores      %d / %u\n", threads, cores);
+    std::printf("threads / cores      %d / %u (waiting %s)\n", threads, cores, wait_policy.c_str());
     std::printf("steps timed          %ld (after %ld warm-up)\n", steps, warmup);
     std::printf("time per step        %.3f ms\n", per_step * 1e3);
     std::printf("particle-steps/s     %.3g\n", rate);

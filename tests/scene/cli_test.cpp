@@ -24,6 +24,13 @@ fs::path scratch() {
 
 test::ProgramResult bsmpm_with(const std::string& args) { return test::run_program(args, scratch() / "program.log"); }
 
+// The program run through `prefix` (e.g. "env VAR=value").
+test::ProgramResult bsmpm_with(const std::string& args, const std::string& prefix) {
+  const fs::path log = scratch() / "program.log";
+  const int status = std::system((prefix + " " + BSMPM_EXECUTABLE + " " + args + " > " + log.string() + " 2>&1").c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::read_text(log)};
+}
+
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 const std::string kScene = test::scene_path("hydrostatic_tank.toml");
@@ -164,6 +171,7 @@ TEST_CASE("bsmpm bench --json prints one valid JSON object with the run's facts"
   CHECK(per_step == Approx(seconds / 3).epsilon(1e-4));
   CHECK(rate == Approx(6400 * 3 / seconds).epsilon(1e-4));
   CHECK(f.at("overrides") == "time.end=1");
+  CHECK(f.at("omp_wait_policy") == "PASSIVE");  // set by ctest (tests/CMakeLists.txt)
   // Memory: the grid has (40 + 2) x (60 + 2) control points at order 2; a particle holds at
   // least its position, velocity, mass, volume, J, F, stress and weights (> 150 bytes).
   CHECK(f.at("control_points") == std::to_string(42 * 62));
@@ -184,5 +192,23 @@ TEST_CASE("bsmpm bench --json prints one valid JSON object with the run's facts"
     CHECK(std::stod(f.at(std::string("phase_seconds_per_step.") + phase)) > 0.0);
   }
   CHECK(sum == Approx(per_step).epsilon(0.01));
-  CHECK(f.size() - phases == 15);
+  CHECK(f.size() - phases == 16);
+}
+
+TEST_CASE("OpenMP threads of bsmpm wait passively unless the environment says otherwise", "[cli][bench]") {
+  // With OMP_DISPLAY_ENV=verbose libgomp prints what it read: a spin count of 0 is passive
+  // waiting. ctest sets OMP_WAIT_POLICY for the tests, so each case sets or clears it here.
+  const auto passive = bsmpm_with("--version", "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose");
+  INFO(passive.output);
+  CHECK(passive.status == 0);
+  CHECK(contains(passive.output, "GOMP_SPINCOUNT = '0'"));
+  CHECK(contains(passive.output, "bsmpm "));  // the version, printed once by the restarted program
+  const auto active = bsmpm_with("--version", "env OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=verbose");
+  CHECK(contains(active.output, "OMP_WAIT_POLICY = 'ACTIVE'"));
+  CHECK(!contains(active.output, "GOMP_SPINCOUNT = '0'"));
+  const auto spin =
+      bsmpm_with("bench " + kScene + " --steps 1 --warmup 0 --json", "env -u OMP_WAIT_POLICY GOMP_SPINCOUNT=1000");
+  CHECK(contains(spin.output, "\"omp_wait_policy\": \"GOMP_SPINCOUNT=1000\""));
+  const auto unset = bsmpm_with("bench " + kScene + " --steps 1 --warmup 0 --json", "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT");
+  CHECK(contains(unset.output, "\"omp_wait_policy\": \"PASSIVE\""));
 }
