@@ -51,12 +51,15 @@ struct GridLayer {
   std::vector<Vec2> velocity_increment; // v_I^{k+1} - v_I^k, the FLIP increment of eq. 11
   std::vector<Vec2> remap_velocity;     // eq. 13: remapped momentum, then velocity
   std::vector<Vec2> mass_gradient;      // sum_p m_p grad S_Ip: contact normals (contact only)
+  std::vector<double> volume;           // sum_p V_p S_Ip: the volume fraction (particle shifting only)
   bool tracks_mass_gradient = false;
+  bool tracks_volume = false;
   NodeBox active;                       // nodes written this step
 
   std::size_t bytes() const {
     return heap_bytes(mass) + heap_bytes(momentum) + heap_bytes(force) + heap_bytes(velocity) +
-           heap_bytes(velocity_increment) + heap_bytes(remap_velocity) + heap_bytes(mass_gradient);
+           heap_bytes(velocity_increment) + heap_bytes(remap_velocity) + heap_bytes(mass_gradient) +
+           heap_bytes(volume);
   }
   void resize(int n) {
     mass.assign(n, 0.0);
@@ -66,6 +69,7 @@ struct GridLayer {
     velocity_increment.assign(n, Vec2::Zero());
     remap_velocity.assign(n, Vec2::Zero());
     if (tracks_mass_gradient) mass_gradient.assign(n, Vec2::Zero());
+    if (tracks_volume) volume.assign(n, 0.0);
   }
 };
 

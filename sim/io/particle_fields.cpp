@@ -82,6 +82,7 @@ constexpr ParticleField kFields[] = {
     state<&Particles::J>("volume_ratio", "1", 0),
     state<&Particles::F>("deformation_gradient", "1", 0),
     state<&Particles::stress>("stress_tensor", "Pa", 0),
+    state<&Particles::C>("affine_velocity", "1/s", 0),
     state<&Particles::id>("id", "1", 0),
 };
 

@@ -23,6 +23,7 @@ void Particles::permute(std::size_t begin, const std::vector<std::uint32_t>& ord
   permute_array(pressure, begin, order, s1);
   permute_array(F, begin, order, s4);
   permute_array(stress, begin, order, s4);
+  permute_array(C, begin, order, s4);
   permute_array(id, begin, order, su);
   permute_array(body, begin, order, sb);
 }

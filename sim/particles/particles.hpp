@@ -20,6 +20,7 @@ struct Particles {
   std::vector<Mat2> F;          // deformation gradient (solids; identity for fluids)
   std::vector<Mat2> stress;     // Cauchy stress, in-plane part (plane strain)
   std::vector<double> pressure; // fluids: equation of state; solids: -tr(sigma)/2
+  std::vector<Mat2> C;          // affine velocity (APIC): v(x) = v_p + C (x - x_p); zero otherwise
   std::vector<std::uint32_t> id;  // index at creation; frames are written in id order
   std::vector<BodyId> body;
 
@@ -35,6 +36,7 @@ struct Particles {
     F.push_back(Mat2::Identity());
     stress.push_back(Mat2::Zero());
     pressure.push_back(0.0);
+    C.push_back(Mat2::Zero());
     id.push_back(static_cast<std::uint32_t>(id.size()));
     body.push_back(b);
   }
@@ -42,7 +44,8 @@ struct Particles {
   double volume(std::size_t p) const { return volume0[p] * J[p]; }
   std::size_t bytes() const {
     return heap_bytes(x) + heap_bytes(x0) + heap_bytes(v) + heap_bytes(mass) + heap_bytes(volume0) + heap_bytes(J) +
-           heap_bytes(F) + heap_bytes(stress) + heap_bytes(pressure) + heap_bytes(id) + heap_bytes(body);
+           heap_bytes(F) + heap_bytes(stress) + heap_bytes(pressure) + heap_bytes(C) + heap_bytes(id) +
+           heap_bytes(body);
   }
 
   // Buffers for permute(), kept by the caller so that re-sorting allocates nothing.

@@ -254,10 +254,19 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
   }
   std::optional<TableReader> solver = t.optional_table("solver");
   if (solver) {
-    s.solver.flip_fraction = solver->number_or("flip", 1.0, Range::closed(0.0, 1.0));
+    const bool apic = solver->choice_or("velocity_update", "flip", {"flip", "apic"}) == "apic";
+    if (apic) s.solver.velocity_update = SolverSettings::VelocityUpdate::kApic;
+    s.solver.flip_fraction = solver->number_or("flip", apic ? 0.0 : 1.0, Range::closed(0.0, 1.0));
     s.solver.mass_cutoff_ratio = solver->number_or("mass_cutoff", s.solver.mass_cutoff_ratio, Range::closed(0.0, 1.0));
     s.solver.sort_interval = static_cast<int>(solver->integer_or("sort_interval", 50, 0, 1000000));
-    s.solver.smooth_fluid_volume = solver->boolean_or("smooth_fluid_volume", false);
+    if (solver->boolean_or("smooth_fluid_volume", false)) s.solver.fluid_volume = SolverSettings::FluidVolume::kSmoothed;
+    if (solver->has("fluid_volume")) {  // wins over smooth_fluid_volume
+      const std::string volume = solver->choice("fluid_volume", {"particle", "smoothed", "projected"});
+      s.solver.fluid_volume = volume == "particle"   ? SolverSettings::FluidVolume::kParticle
+                              : volume == "smoothed" ? SolverSettings::FluidVolume::kSmoothed
+                                                     : SolverSettings::FluidVolume::kProjected;
+    }
+    s.solver.shifting = solver->number_or("particle_shifting", 0.0, Range::closed(0.0, 0.5));
   }
   std::map<std::string, Material> materials;
   {

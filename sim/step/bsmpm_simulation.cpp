@@ -1,6 +1,7 @@
 #include "step/bsmpm_simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -38,6 +39,24 @@ std::string describe_material(const Body& b) {
 
 }  // namespace
 
+namespace {
+
+// 1 / (sum_k N_i(x_k) dx), over an even lattice x_k = origin + (k + 1/2) dx covering the axis.
+template <int P>
+std::vector<double> lattice_fraction_inverse(const ClampedBSpline<P>& basis, double dx) {
+  std::vector<double> sum(basis.basis_count(), 0.0);
+  const int count = static_cast<int>(std::lround((basis.end() - basis.origin()) / dx));
+  for (int k = 0; k < count; ++k) {
+    typename ClampedBSpline<P>::Weights w, dw;
+    const int first = basis.evaluate(basis.origin() + (k + 0.5) * dx, w, dw);
+    for (int a = 0; a <= P; ++a) sum[first + a] += w[a] * dx;
+  }
+  for (double& v : sum) v = v > 0.0 ? 1.0 / v : 0.0;
+  return sum;
+}
+
+}  // namespace
+
 template <int P>
 BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
                                     std::vector<std::unique_ptr<Effect<P>>> effects,
@@ -51,13 +70,33 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
     if (e->hooks() & kHookConstrainVelocity) velocity_hooks_.push_back(e.get());
   }
   st_.schedules.resize(st_.bodies.size());
-  if (settings_.smooth_fluid_volume) {
+  if (settings_.fluid_volume == SolverSettings::FluidVolume::kProjected) {
+    projection_ = DilatationProjection<P>(st_.grid);
+    increment_scratch_.resize(st_.particles.size());
+    gradient_scratch_.resize(st_.particles.size());
+  }
+  for (int i = 0; i < st_.grid.nx(); ++i) greville_x_.push_back(st_.grid.bx.greville(i));
+  for (int j = 0; j < st_.grid.ny(); ++j) greville_y_.push_back(st_.grid.by.greville(j));
+  // Half the interior D_p of APIC: h^2/4 for quadratic, h^2/3 for cubic B-splines.
+  const double interior = P == 2 ? 0.25 : 1.0 / 3.0;
+  affine_floor_ = 0.5 * interior * st_.grid.cell_size().cwiseProduct(st_.grid.cell_size());
+  if (settings_.fluid_volume == SolverSettings::FluidVolume::kSmoothed) {
     smoothing_moments_.assign(kMoments * st_.grid.node_count(), 0.0);
-    for (int i = 0; i < st_.grid.nx(); ++i) greville_x_.push_back(st_.grid.bx.greville(i));
-    for (int j = 0; j < st_.grid.ny(); ++j) greville_y_.push_back(st_.grid.by.greville(j));
     gradient_scratch_.resize(st_.particles.size());
   }
   st_.weights.resize(st_.particles.size());
+  if (settings_.shifting > 0.0) {
+    for (const Body& b : st_.bodies)
+      if (is_fluid(b.material)) st_.layers[b.layer].tracks_volume = true;
+    // The volume fraction an even lattice of particles (the seeding's) gives at each control
+    // point is 1 inside but not next to a wall, where the clamped functions are lopsided:
+    // phi is measured against it, so that the seeded state does not drift.
+    Vec2 spacing = st_.grid.cell_size() / 2.0;
+    for (const Body& b : st_.bodies)
+      if (is_fluid(b.material)) { spacing = b.spacing; break; }
+    inverse_integral_x_ = lattice_fraction_inverse(st_.grid.bx, spacing.x());
+    inverse_integral_y_ = lattice_fraction_inverse(st_.grid.by, spacing.y());
+  }
   for (auto& layer : st_.layers) layer.resize(st_.grid.node_count());
   st_.index_of_id.resize(st_.particles.size());
   for (std::size_t p = 0; p < st_.particles.size(); ++p) st_.index_of_id[st_.particles.id[p]] = p;
@@ -88,10 +127,10 @@ MemoryUse BsmpmSimulation<P>::memory_use() const {
   m.control_points = static_cast<std::size_t>(st_.grid.node_count());
   m.particle_bytes = st_.particles.bytes() + heap_bytes(st_.weights) + heap_bytes(st_.index_of_id) +
                      heap_bytes(gradient_scratch_) + heap_bytes(sort_key_) + heap_bytes(sort_order_) +
-                     heap_bytes(column_scratch_) +
+                     heap_bytes(column_scratch_) + heap_bytes(increment_scratch_) +
                      permute_scratch_.bytes();
   for (const StripSchedule& s : st_.schedules) m.particle_bytes += s.bytes();
-  m.grid_bytes = heap_bytes(smoothing_moments_) + heap_bytes(sort_start_);  // one counter per cell
+  m.grid_bytes = heap_bytes(smoothing_moments_) + heap_bytes(sort_start_) + projection_.bytes();
   for (const GridLayer& layer : st_.layers) m.grid_bytes += layer.bytes();
   return m;
 }
@@ -128,7 +167,8 @@ void BsmpmSimulation<P>::advance(double dt) {
     e->grid_forces(st_);
   }
   update_grid_velocity(dt);                 // eqs. 9-10 and the essential conditions
-  move_particles_and_remap_momentum(dt);    // eqs. 11-13
+  if (settings_.velocity_update == SolverSettings::VelocityUpdate::kApic) move_particles_and_remap_momentum<true>(dt);
+  else move_particles_and_remap_momentum<false>(dt);  // eqs. 11-13
   update_remap_velocity();                  // eq. 13 and the essential conditions again
   const DeformationUpdate update = update_deformation_and_stress(dt);  // eq. 14 and the constitutive update
   max_signal_speed_ = update.max_signal_speed;  // bounds the next time step (CFL)
@@ -202,13 +242,21 @@ void BsmpmSimulation<P>::particle_to_grid() {
   const PhaseScope timed(st_.timer, StepPhase::kParticleToGrid);
   for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
     // Mass gradients only for fields that take part in contact (their normals).
-    if (st_.layers[st_.bodies[b].layer].tracks_mass_gradient) scatter_body<true>(b);
-    else scatter_body<false>(b);
+    const GridLayer& layer = st_.layers[st_.bodies[b].layer];
+    const bool gradient = layer.tracks_mass_gradient, volume = layer.tracks_volume;
+    const bool affine = settings_.velocity_update == SolverSettings::VelocityUpdate::kApic;
+    if (volume) {
+      if (affine) gradient ? scatter_body<true, true, true>(b) : scatter_body<false, true, true>(b);
+      else gradient ? scatter_body<true, false, true>(b) : scatter_body<false, false, true>(b);
+    } else {
+      if (affine) gradient ? scatter_body<true, true, false>(b) : scatter_body<false, true, false>(b);
+      else gradient ? scatter_body<true, false, false>(b) : scatter_body<false, false, false>(b);
+    }
   }
 }
 
 template <int P>
-template <bool kMassGradient>
+template <bool kMassGradient, bool kAffine, bool kVolume>
 void BsmpmSimulation<P>::scatter_body(std::size_t b) {
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
@@ -217,16 +265,25 @@ void BsmpmSimulation<P>::scatter_body(std::size_t b) {
     const auto& w = st_.weights[p];
     const double m = ps.mass[p];
     const Vec2 mv = m * ps.v[p];
-    const Mat2 Vsigma = ps.volume(p) * ps.stress[p];
+    const double Vp = ps.volume(p);
+    const Mat2 Vsigma = Vp * ps.stress[p];
+    const Mat2 mC = m * ps.C[p];
     for (int a = 0; a <= P; ++a) {
       const int row = (w.i0 + a) * ny + w.j0;
       for (int c = 0; c <= P; ++c) {
         const double s = w.wx[a] * w.wy[c];
         const Vec2 grad(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]);
         layer.mass[row + c] += m * s;          // eq. 5
-        layer.momentum[row + c] += s * mv;     // eq. 6 (numerator)
+        if constexpr (kAffine) {
+          // APIC: the particle's momentum at the control point, m (v_p + C_p (xi_I - x_p)).
+          const Vec2 d(greville_x_[w.i0 + a] - ps.x[p].x(), greville_y_[w.j0 + c] - ps.x[p].y());
+          layer.momentum[row + c] += s * (mv + mC * d);
+        } else {
+          layer.momentum[row + c] += s * mv;   // eq. 6 (numerator)
+        }
         layer.force[row + c] -= Vsigma * grad; // eq. 7
         if constexpr (kMassGradient) layer.mass_gradient[row + c] += m * grad;  // contact normals
+        if constexpr (kVolume) layer.volume[row + c] += s * Vp;
       }
     }
   });
@@ -283,6 +340,88 @@ inline void scatter(const ParticleWeights<P>& w, const Vec2& q, std::vector<Vec2
   }
 }
 
+// Adds S_Ip (m v_p + m C_p (xi_I - x_p)) to the particle's control points of `field`.
+template <int P>
+inline void scatter_affine(const ParticleWeights<P>& w, const Vec2& mv, const Mat2& mC, const Vec2& x,
+                           const std::vector<double>& gx, const std::vector<double>& gy, std::vector<Vec2>& field,
+                           int ny) {
+  for (int a = 0; a <= P; ++a) {
+    const int row = (w.i0 + a) * ny + w.j0;
+    const Vec2 at_column = mv + (gx[w.i0 + a] - x.x()) * mC.col(0);
+    for (int c = 0; c <= P; ++c)
+      field[row + c] += (w.wx[a] * w.wy[c]) * (at_column + (gy[w.j0 + c] - x.y()) * mC.col(1));
+  }
+}
+
+// The APIC affine velocity C_p = B_p D_p^-1 (Jiang et al. 2015, eq. 10) about the control
+// points' Greville abscissae, B_p = sum S_Ip v_I (xi_I - x_p)^T, D_p = sum S_Ip (xi_I - x_p)(xi_I - x_p)^T.
+// B-splines reproduce linear functions with the Greville points (sum S_Ip xi_I = x_p), which
+// is what makes the transfer exact for affine velocity fields and conserve momentum. Next
+// to a wall the clamped basis makes D_p vanish like the distance to it; its diagonal is
+// floored at half its interior value, so that a lone particle's own pressure cannot drive
+// C_p faster than the time step resolves (a particle within ~h/8 of a wall loses part of
+// its normal gradient). Linear splines have D_p = 0 at the nodes: there C_p is the gradient
+// of the interpolated velocity, sum v_I grad S_Ip^T.
+// With tensor-product weights S_Ip = N_a(x) N_c(y), sum_c N_c = 1 and linear reproduction,
+// D_p is diagonal, D_xx = sum_a N_a (xi_a - x)^2 and D_yy = sum_c N_c (eta_c - y)^2: it is
+// evaluated per axis, and B_p through the row sums of the velocities.
+template <int P>
+inline Mat2 affine_velocity(const ParticleWeights<P>& w, const std::vector<Vec2>& v, int ny, const Vec2& x,
+                            const std::vector<double>& gx, const std::vector<double>& gy, const Vec2& floor) {
+  Mat2 B = Mat2::Zero();
+  if constexpr (P == 1) {
+    for (int a = 0; a <= P; ++a) {
+      const int row = (w.i0 + a) * ny + w.j0;
+      for (int c = 0; c <= P; ++c) B += v[row + c] * Vec2(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]).transpose();
+    }
+    return B;
+  } else {
+    std::array<double, P + 1> dy;
+    double Dyy = 0.0, Dxx = 0.0;
+    for (int c = 0; c <= P; ++c) {
+      dy[c] = gy[w.j0 + c] - x.y();
+      Dyy += w.wy[c] * dy[c] * dy[c];
+    }
+    for (int a = 0; a <= P; ++a) {
+      const int row = (w.i0 + a) * ny + w.j0;
+      const double dx = gx[w.i0 + a] - x.x();
+      Dxx += w.wx[a] * dx * dx;
+      Vec2 along = Vec2::Zero(), across = Vec2::Zero();  // sum_c N_c v, sum_c N_c v dy
+      for (int c = 0; c <= P; ++c) {
+        along += w.wy[c] * v[row + c];
+        across += (w.wy[c] * dy[c]) * v[row + c];
+      }
+      B.col(0) += (w.wx[a] * dx) * along;
+      B.col(1) += w.wx[a] * across;
+    }
+    B.col(0) /= std::max(Dxx, floor.x());
+    B.col(1) /= std::max(Dyy, floor.y());
+    return B;
+  }
+}
+
+// Particle shifting (after Lind et al. 2012, J. Comput. Phys. 231:1499, carried to the grid):
+// phi_I = sum_p S_Ip V_p / integral(N_I) is the volume fraction at the control point (1 where
+// particles fill the support evenly); a fluid particle inside the water (phi >= 0.95 at it)
+// drifts by -D grad phi, towards where particles are too sparse. Near a free surface or a
+// solid phi drops below the threshold and nothing moves, so the surface is not smeared out.
+template <int P>
+inline Vec2 shift_of(const ParticleWeights<P>& w, const std::vector<double>& volume, int ny,
+                     const std::vector<double>& inv_ix, const std::vector<double>& inv_iy, double D) {
+  double phi = 0.0;
+  Vec2 grad = Vec2::Zero();
+  for (int a = 0; a <= P; ++a) {
+    const int row = (w.i0 + a) * ny + w.j0;
+    for (int c = 0; c <= P; ++c) {
+      const double f = volume[row + c] * inv_ix[w.i0 + a] * inv_iy[w.j0 + c];
+      phi += w.wx[a] * w.wy[c] * f;
+      grad += f * Vec2(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]);
+    }
+  }
+  if (phi < 0.95) return Vec2::Zero();
+  return -D * grad;
+}
+
 }  // namespace
 
 // G2P and the remap in one pass over the particles: the new velocity (eq. 11) and position
@@ -290,11 +429,14 @@ inline void scatter(const ParticleWeights<P>& w, const Vec2& q, std::vector<Vec2
 // (counted in stats().clamped_positions), and the new momentum scattered back to the grid
 // (eq. 13; update_remap_velocity() divides it by the nodal mass).
 template <int P>
+template <bool kAffine>
 void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
   const PhaseScope timed(st_.timer, StepPhase::kGridToParticle);
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
   const double flip = settings_.flip_fraction;
+  const double h_min = st_.grid.cell_size().minCoeff();
+  const double shift_scale = settings_.shifting * h_min * h_min;
   const Vec2 margin = 1e-9 * st_.grid.cell_size();
   const Vec2 lo = st_.grid.origin() + margin, hi = st_.grid.extent_max() - margin;
   long clamped = 0;
@@ -302,25 +444,42 @@ void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
     const Body& body = st_.bodies[b];
     GridLayer& layer = st_.layers[body.layer];
     const RigidBody* rigid = std::get_if<RigidBody>(&body.material);
+    const bool shift = layer.tracks_volume && is_fluid(body.material);
     long body_clamped = 0;
     st_.schedules[b].for_each([&](std::uint32_t p) {
       const auto& w = st_.weights[p];
       const GridVelocityAt grid = gather_velocity<P>(w, layer, ny);
       Vec2 v, v_new = grid.velocity;
+      Mat2 C = Mat2::Zero();
       if (rigid) {
         v = rigid->velocity;
         v_new = v;
+      } else if constexpr (kAffine) {
+        v = flip * (ps.v[p] + grid.increment) + (1.0 - flip) * v_new;
+        C = affine_velocity<P>(w, layer.velocity, ny, ps.x[p], greville_x_, greville_y_, affine_floor_);
       } else {
         v = flip * (ps.v[p] + grid.increment) + (1.0 - flip) * v_new;  // eq. 11 (flip = 1: paper)
       }
-      ps.v[p] = v;
+      const Vec2 x_old = ps.x[p];
       Vec2 x = ps.x[p] + dt * v_new;                                   // eq. 12 with v_I^{k+1}
+      if (shift) {
+        const Vec2 dx = shift_of<P>(w, layer.volume, ny, inverse_integral_x_, inverse_integral_y_, shift_scale);
+        x += dx;
+        if constexpr (kAffine) v += C * dx;
+      }
+      ps.v[p] = v;
       if (keep_inside(x, lo, hi)) {
 #pragma omp atomic
         ++body_clamped;
       }
       ps.x[p] = x;
-      scatter<P>(w, ps.mass[p] * v, layer.remap_velocity, ny);        // eq. 13
+      if constexpr (kAffine) {
+        ps.C[p] = C;
+        scatter_affine<P>(w, ps.mass[p] * v, ps.mass[p] * C, x_old, greville_x_, greville_y_, layer.remap_velocity,
+                          ny);  // eq. 13 with the affine field
+      } else {
+        scatter<P>(w, ps.mass[p] * v, layer.remap_velocity, ny);      // eq. 13
+      }
     });
     clamped += body_clamped;
   }
@@ -372,8 +531,22 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
   auto& ps = st_.particles;
   double body_speed = 0.0;
   bool body_invalid = false;
-  const bool smooth = settings_.smooth_fluid_volume;
-  if (smooth) {
+  const bool smooth = settings_.fluid_volume != SolverSettings::FluidVolume::kParticle;
+  if (settings_.fluid_volume == SolverSettings::FluidVolume::kProjected) {
+    // The volumetric increment of each particle, projected onto the lower splines (F-bar).
+#pragma omp parallel for schedule(static)
+    for (long p = body.begin; p < body.end; ++p) {
+      const Mat2 L = velocity_gradient<P>(st_.weights[p], body.velocity, ny);
+      gradient_scratch_[p] = L;
+      increment_scratch_[p] = (Mat2::Identity() + dt * L).determinant() - 1.0;
+    }
+    {
+      const PhaseScope timed(st_.timer, StepPhase::kSmoothing);
+      projection_.project(st_, st_.schedules[body.index], body.begin, body.end, increment_scratch_);
+    }
+#pragma omp parallel for schedule(static)
+    for (long p = body.begin; p < body.end; ++p) ps.J[p] *= 1.0 + increment_scratch_[p];
+  } else if (smooth) {
     // Volume change from the velocity gradient, then J projected onto the control points and
     // back before it enters the equation of state.
 #pragma omp parallel for schedule(static)
@@ -567,6 +740,7 @@ void BsmpmSimulation<P>::clear_grid() {
       std::fill_n(layer.velocity_increment.begin() + first, count, Vec2::Zero());
       std::fill_n(layer.remap_velocity.begin() + first, count, Vec2::Zero());
       if (layer.tracks_mass_gradient) std::fill_n(layer.mass_gradient.begin() + first, count, Vec2::Zero());
+      if (layer.tracks_volume) std::fill_n(layer.volume.begin() + first, count, 0.0);
     }
   }
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "step/dilatation_projection.hpp"
 #include "step/effect.hpp"
 #include "step/simulation.hpp"
 #include "step/step_state.hpp"
@@ -43,10 +44,11 @@ class BsmpmSimulation final : public Simulation {
   void particle_to_grid();
 
  private:
-  template <bool kMassGradient>
+  template <bool kMassGradient, bool kAffine, bool kVolume>
   void scatter_body(std::size_t b);
   void sort_particles_by_cell();
   void update_grid_velocity(double dt);
+  template <bool kAffine>
   void move_particles_and_remap_momentum(double dt);
   void update_remap_velocity();
   struct DeformationUpdate {
@@ -76,10 +78,14 @@ class BsmpmSimulation final : public Simulation {
   static constexpr int kMoments = 9;
   std::vector<double> smoothing_moments_;  // per control point, only with smooth_fluid_volume
   std::vector<double> greville_x_, greville_y_;
+  Vec2 affine_floor_ = Vec2::Zero();        // APIC: floor of D_p's diagonal [m2]
+  std::vector<double> inverse_integral_x_, inverse_integral_y_;  // 1 / integral of N_i (particle shifting)
   std::vector<Mat2> gradient_scratch_;
   std::vector<std::uint32_t> sort_key_, sort_order_, sort_start_;  // sort_particles_by_cell()
   std::vector<int> column_scratch_;  // compute_weights(): each particle's first column
   Particles::PermuteScratch permute_scratch_;
+  DilatationProjection<P> projection_;      // only with FluidVolume::kProjected
+  std::vector<double> increment_scratch_;
   double max_signal_speed_ = 0.0;
   SimulationStats stats_;
 };

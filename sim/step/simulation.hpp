@@ -22,10 +22,23 @@ struct GridInfo {
 };
 
 struct SolverSettings {
+  // The particle velocity update (docs/method.md §2): FLIP (eq. 11, blended with PIC by
+  // flip_fraction) or APIC, an affine particle velocity (Jiang et al. 2015).
+  enum class VelocityUpdate { kFlip, kApic };
+  VelocityUpdate velocity_update = VelocityUpdate::kFlip;
   double flip_fraction = 1.0;        // 1 = pure FLIP increment (eq. 11); 0 = PIC
   double mass_cutoff_ratio = 1e-6;   // nodal mass cut-off, relative to the lightest particle
   int sort_interval = 50;            // steps between re-sorting particles by cell
-  bool smooth_fluid_volume = false;  // project the fluid volume ratio J through the grid
+  // How a fluid's volume ratio J follows the flow (docs/method.md §4).
+  enum class FluidVolume {
+    kParticle,   // J <- J det(I + dt L_p) at each particle (the paper)
+    kSmoothed,   // the same, then J itself fitted through the control points each step
+    kProjected,  // the increment projected onto the splines one degree lower (F-bar)
+  };
+  FluidVolume fluid_volume = FluidVolume::kParticle;
+  // Particle shifting (docs/method.md §4): fluid particles drift down the gradient of the
+  // grid's volume fraction, D = shifting h^2 per step; 0 = off (the paper).
+  double shifting = 0.0;
 };
 
 // What the last step did, for tests and diagnostics.

@@ -1,0 +1,103 @@
+// Impact pressure at a wall (docs/method.md §10, docs/validation.md "Impact pressure"):
+// a plane jet against the steady stagnation flow it must form, and the Lobovsky dam break's
+// first impact, whose wall probes must not read tension.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+
+using namespace bsmpm;
+
+namespace {
+
+struct WindowStats {
+  double mean = 0.0, deviation = 0.0;
+};
+
+// Mean and standard deviation of the probe's pressure column P over t in (t0, t1).
+WindowStats pressure_over(const Probe& probe, double t0, double t1) {
+  double sum = 0.0, squares = 0.0;
+  int n = 0;
+  for (std::size_t r = 0; r < probe.row_count(); ++r) {
+    const double* row = probe.row(r);
+    if (row[0] <= t0 || row[0] >= t1) continue;
+    sum += row[2];
+    squares += row[2] * row[2];
+    ++n;
+  }
+  REQUIRE(n > 100);
+  const double mean = sum / n;
+  return {mean, std::sqrt(std::max(0.0, squares / n - mean * mean))};
+}
+
+// The lowest P* a probe reads from the first sample above `contact` on.
+double lowest_after_contact(const Probe& probe, double contact) {
+  double lowest = 1e300;
+  bool touched = false;
+  for (std::size_t r = 0; r < probe.row_count(); ++r) {
+    const double p_star = probe.row(r)[3];
+    touched = touched || p_star > contact;
+    if (touched) lowest = std::min(lowest, p_star);
+  }
+  REQUIRE(touched);
+  return lowest;
+}
+
+}  // namespace
+
+TEST_CASE("A plane jet on a wall: stagnation pressure and momentum flux", "[physics][impact]") {
+  // scenes/jet_on_wall.toml: b = 50 mm, U = 2 m/s, h = 2.5 mm (20 cells across the jet),
+  // no gravity. Steady stagnation flow of a free jet: p = rho U^2 / 2 on the axis, falling
+  // to about 0.2 of it at 1.2 b; the wall carries rho U^2 b.
+  const auto run = test::run_scene("jet_on_wall.toml");
+  const double rho = 1000.0, U = 2.0, b = 0.05, p0 = 0.5 * rho * U * U;
+  const std::vector<std::string> names = {"P_x400", "P_x415", "P_x430", "P_x445", "P_x460"};
+  const double spacing = 0.015;
+  std::vector<WindowStats> at;
+  for (const auto& name : names) {
+    const Probe* probe = test::find_probe(*run.sim, name);
+    REQUIRE(probe != nullptr);
+    at.push_back(pressure_over(*probe, 0.06, 0.12));
+    UNSCOPED_INFO(name << ": mean " << at.back().mean / p0 << " p0, deviation " << at.back().deviation / p0 << " p0");
+  }
+  // On the axis. Measured 0.70 p0 (APIC + smoothed J + shifting, the shipped options); the
+  // solver of the first release read 0.57 p0, FLIP with 5 % PIC 0.84 p0 but swinging by
+  // 0.29 p0. The wall's reaction force is within 2 % of rho U^2 b in every variant: what
+  // is left of the deficit is how particles next to the wall carry pressure (a third of a
+  // cell from it, the probe's footprint sees the first cell). Bound: the measured value
+  // less 0.08 p0, the window mean's change between grids of 5 and 2.5 mm.
+  CHECK(at[0].mean > 0.62 * p0);
+  CHECK(at[0].mean < 1.05 * p0);  // never above Bernoulli (+5 %: compressibility, M = 0.06)
+  // Steadiness: measured 0.074 p0 (the first release: 0.29 p0). Bound twice the measured.
+  CHECK(at[0].deviation < 0.15 * p0);
+  // Pressure falls away from the axis: at 0.9 b it is below its value at 0.3 b.
+  CHECK(at[3].mean < at[1].mean);
+  // Momentum flux through the probes: the trapezoid over |x| <= 1.2 b (both sides), which
+  // holds about 0.9 of rho U^2 b for the exact free-jet profile. Measured 0.77 (the first
+  // release 0.61); bound the measured less 0.07.
+  double integral = 0.0;
+  for (std::size_t k = 1; k < at.size(); ++k) integral += 0.5 * (at[k - 1].mean + at[k].mean) * spacing;
+  integral *= 2.0;
+  INFO("integral " << integral / (rho * U * U * b) << " rho U^2 b");
+  CHECK(integral > 0.70 * rho * U * U * b);
+  CHECK(integral < 1.0 * rho * U * U * b);
+}
+
+TEST_CASE("Dam break: the wall probes read no tension after first contact", "[physics][impact]") {
+  // scenes/lobovsky_h300.toml (shipped options) at h = 8 mm up to T* = 3.4, through the
+  // first impact and the run-up. Water in the experiment carries no tension (its lowest
+  // sample after contact is -0.01 P* at 30 mm and -0.04 at 80 mm); the bound is
+  // -0.1 P*. Measured: 0.000 at both probes (the first release: -2.07 and -1.56).
+  const auto run = test::run_scene("lobovsky_h300.toml", {"grid.cell_size=0.008", "time.end=0.6"});
+  for (const char* name : {"P_z30", "P_z80"}) {
+    const Probe* probe = test::find_probe(*run.sim, name);
+    REQUIRE(probe != nullptr);
+    const double lowest = lowest_after_contact(*probe, 0.05);
+    INFO(name << ": lowest P* after contact " << lowest);
+    CHECK(lowest > -0.1);
+  }
+}
