@@ -1,11 +1,15 @@
 // bsmpm bench SCENE: times the step of a scene (no output files) and reports time per step
-// and particle-steps per second with the thread and core counts.
+// and particle-steps per second with the thread and core counts, the time of each phase of
+// the step (step/phase_timer.hpp) and the solver's memory per particle and per control point.
 #include <omp.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
@@ -13,6 +17,7 @@
 #include "io/json.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "step/phase_timer.hpp"
 #include "step/time_step.hpp"
 
 namespace bsmpm::cli {
@@ -24,7 +29,26 @@ const char* kHelp =
     "\n"
     "Builds the scene, runs --warmup steps (default 20), then times --steps steps (default 200)\n"
     "with the scene's time step. Prints time per step and particle-steps per second, with the\n"
-    "thread count and the machine's core count. --json prints one JSON object instead.\n";
+    "thread count and the machine's core count; the time per step of each phase of the step\n"
+    "(\"outside\" is the bench loop between steps, \"other\" the step outside every phase); and\n"
+    "the solver's heap bytes per particle and per control point. --json prints one JSON object\n"
+    "instead (a record for scripts/bench --compare).\n";
+
+// How idle OpenMP threads wait: as the environment says; main.cpp sets PASSIVE when it says
+// nothing (or, should that have failed, libgomp spins for a while: "default").
+std::string omp_wait_policy() {
+  if (const char* policy = std::getenv("OMP_WAIT_POLICY")) return policy;
+  if (const char* spin = std::getenv("GOMP_SPINCOUNT")) return std::string("GOMP_SPINCOUNT=") + spin;
+  return "default";
+}
+
+// The phases with any time, in step order, as (name, seconds per step).
+std::vector<std::pair<const char*, double>> phase_table(const PhaseTimer& timer, long steps) {
+  std::vector<std::pair<const char*, double>> rows;
+  for (std::size_t k = 0; k < kStepPhaseCount; ++k)
+    if (timer.seconds(k) > 0.0) rows.emplace_back(kStepPhaseNames[k], timer.seconds(k) / steps);
+  return rows;
+}
 }
 
 int command_bench(const std::vector<std::string>& argv) {
@@ -43,28 +67,49 @@ int command_bench(const std::vector<std::string>& argv) {
   const double h_min = std::min(g.cell_size.x(), g.cell_size.y());
   auto step = [&] { sim->advance(time_step(scene.time, sim->max_signal_speed(), h_min)); };
   for (long i = 0; i < warmup; ++i) step();
+  PhaseTimer timer;
+  sim->set_phase_timer(&timer);
   const auto t0 = std::chrono::steady_clock::now();
+  timer.reset(StepPhase::kOutside);
   for (long i = 0; i < steps; ++i) step();
+  timer.switch_to(StepPhase::kOutside);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  sim->set_phase_timer(nullptr);
+  const auto phases = phase_table(timer, steps);
+  const MemoryUse mem = sim->memory_use();
+  const double per_particle = mem.particles ? double(mem.particle_bytes) / mem.particles : 0.0;
+  const double per_node = mem.control_points ? double(mem.grid_bytes) / mem.control_points : 0.0;
   const std::size_t n = sim->particles().size();
   const double per_step = wall / steps;
   const double rate = n * steps / wall;
   const unsigned cores = std::thread::hardware_concurrency();
+  const std::string wait_policy = omp_wait_policy();
   if (args.flag("--json")) {
-    std::printf("{\"scene\": %s, \"particles\": %zu, \"order\": %d, \"cells\": [%d, %d], \"cell_size\": [%g, %g], "
-                "\"threads\": %d, \"cores\": %u, \"steps\": %ld, \"seconds\": %.6g, \"seconds_per_step\": %.6g, "
-                "\"particle_steps_per_second\": %.6g}\n",
-                json_quoted(scene.path).c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(),
-                threads, cores, steps, wall, per_step, rate);
+    std::string overrides;
+    for (const std::string& o : args.all("--set")) overrides += (overrides.empty() ? "" : ", ") + json_quoted(o);
+    std::printf("{\"scene\": %s, \"overrides\": [%s], \"particles\": %zu, \"order\": %d, \"cells\": [%d, %d], \"cell_size\": [%g, %g], "
+                "\"threads\": %d, \"cores\": %u, \"omp_wait_policy\": %s, \"steps\": %ld, \"seconds\": %.6g, \"seconds_per_step\": %.6g, "
+                "\"particle_steps_per_second\": %.6g, \"control_points\": %zu, \"bytes_per_particle\": %.6g, "
+                "\"bytes_per_control_point\": %.6g, \"phase_seconds_per_step\": {",
+                json_quoted(scene.path).c_str(), overrides.c_str(), n, g.order, g.cells_x, g.cells_y, g.cell_size.x(), g.cell_size.y(),
+                threads, cores, json_quoted(wait_policy).c_str(), steps, wall, per_step, rate, mem.control_points, per_particle, per_node);
+    for (std::size_t k = 0; k < phases.size(); ++k)
+      std::printf("%s\"%s\": %.6g", k ? ", " : "", phases[k].first, phases[k].second);
+    std::printf("}}\n");
   } else {
     std::printf("scene                %s\n", scene.path.c_str());
     std::printf("grid                 %d x %d cells of %.4g mm, order %d\n", g.cells_x, g.cells_y, g.cell_size.x() * 1e3,
                 g.order);
     std::printf("particles            %zu\n", n);
-    std::printf("threads / cores      %d / %u\n", threads, cores);
+    std::printf("threads / cores      %d / %u (waiting %s)\n", threads, cores, wait_policy.c_str());
     std::printf("steps timed          %ld (after %ld warm-up)\n", steps, warmup);
     std::printf("time per step        %.3f ms\n", per_step * 1e3);
     std::printf("particle-steps/s     %.3g\n", rate);
+    std::printf("memory               %.0f bytes per particle, %.0f per control point (%zu)\n", per_particle,
+                per_node, mem.control_points);
+    std::printf("phase                ms/step   share\n");
+    for (const auto& [name, seconds] : phases)
+      std::printf("  %-18s %8.3f  %5.1f %%\n", name, seconds * 1e3, 100.0 * seconds / per_step);
   }
   return kOk;
 }

@@ -1,5 +1,8 @@
 // bsmpm: B-spline material point simulator for dam-break flows against obstacles.
 #include <cstdio>
+#include <unistd.h>
+
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -8,6 +11,20 @@
 #include "core/version.hpp"
 
 namespace {
+
+// OpenMP threads sleep between parallel loops instead of spinning, unless the environment
+// says otherwise (OMP_WAIT_POLICY, or GOMP_SPINCOUNT). Spinning threads that share the cores
+// with another job take the time that job needs: on 2 cores beside two other jobs, a
+// 2-thread step of lobovsky_h300 at 2 mm took 114-151 ms spinning and 60-64 ms passive
+// (docs/validation.md, speed). libgomp reads its environment once, when it is loaded, and
+// has no call to change the policy afterwards (nor does setting the variable from the
+// preinit array reach it): the program starts itself again with the variable set. If that
+// fails it carries on, spinning.
+void default_to_passive_waiting(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+}
 
 const char* kHelp =
     "usage: bsmpm COMMAND [options]\n"
@@ -38,6 +55,7 @@ const char* kHelp =
 
 int main(int argc, char** argv) {
   using namespace bsmpm;
+  default_to_passive_waiting(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kHelp, args.empty() ? stderr : stdout);

@@ -56,6 +56,11 @@ struct GridLayer {
   bool tracks_volume = false;
   NodeBox active;                       // nodes written this step
 
+  std::size_t bytes() const {
+    return heap_bytes(mass) + heap_bytes(momentum) + heap_bytes(force) + heap_bytes(velocity) +
+           heap_bytes(velocity_increment) + heap_bytes(remap_velocity) + heap_bytes(mass_gradient) +
+           heap_bytes(volume);
+  }
   void resize(int n) {
     mass.assign(n, 0.0);
     momentum.assign(n, Vec2::Zero());

@@ -12,12 +12,8 @@ void permute_array(std::vector<T>& a, std::size_t begin, const std::vector<std::
 }
 }  // namespace
 
-void Particles::permute(std::size_t begin, const std::vector<std::uint32_t>& order) {
-  std::vector<Vec2> s2;
-  std::vector<double> s1;
-  std::vector<Mat2> s4;
-  std::vector<std::uint32_t> su;
-  std::vector<BodyId> sb;
+void Particles::permute(std::size_t begin, const std::vector<std::uint32_t>& order, PermuteScratch& scratch) {
+  auto& [s2, s1, s4, su, sb] = scratch;
   permute_array(x, begin, order, s2);
   permute_array(x0, begin, order, s2);
   permute_array(v, begin, order, s2);

@@ -42,10 +42,26 @@ struct Particles {
   }
 
   double volume(std::size_t p) const { return volume0[p] * J[p]; }
+  std::size_t bytes() const {
+    return heap_bytes(x) + heap_bytes(x0) + heap_bytes(v) + heap_bytes(mass) + heap_bytes(volume0) + heap_bytes(J) +
+           heap_bytes(F) + heap_bytes(stress) + heap_bytes(pressure) + heap_bytes(C) + heap_bytes(id) +
+           heap_bytes(body);
+  }
 
+  // Buffers for permute(), kept by the caller so that re-sorting allocates nothing.
+  struct PermuteScratch {
+    std::vector<Vec2> vec2;
+    std::vector<double> real;
+    std::vector<Mat2> mat2;
+    std::vector<std::uint32_t> index;
+    std::vector<BodyId> body;
+    std::size_t bytes() const {
+      return heap_bytes(vec2) + heap_bytes(real) + heap_bytes(mat2) + heap_bytes(index) + heap_bytes(body);
+    }
+  };
   // Reorders the range [begin, begin + order.size()) so that new slot k holds old
   // particle begin + order[k].
-  void permute(std::size_t begin, const std::vector<std::uint32_t>& order);
+  void permute(std::size_t begin, const std::vector<std::uint32_t>& order, PermuteScratch& scratch);
 };
 
 }  // namespace bsmpm

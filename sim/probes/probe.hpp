@@ -59,7 +59,13 @@ class Probe {
   virtual void sample(const ProbeContext& ctx, double* row) = 0;
 
  private:
-  std::size_t columns_count() const { return columns().size(); }
+  // columns() builds its strings: counted once, so that sampling allocates nothing but the
+  // series' own (amortised) growth.
+  std::size_t columns_count() const {
+    if (columns_count_ == 0) columns_count_ = columns().size();
+    return columns_count_;
+  }
+  mutable std::size_t columns_count_ = 0;
   std::string name_;
   double interval_;
   double next_time_ = -1.0e300;

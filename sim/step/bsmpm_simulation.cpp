@@ -123,6 +123,21 @@ GridInfo BsmpmSimulation<P>::grid_info() const {
 }
 
 template <int P>
+MemoryUse BsmpmSimulation<P>::memory_use() const {
+  MemoryUse m;
+  m.particles = st_.particles.size();
+  m.control_points = static_cast<std::size_t>(st_.grid.node_count());
+  m.particle_bytes = st_.particles.bytes() + heap_bytes(st_.weights) + heap_bytes(st_.index_of_id) +
+                     heap_bytes(gradient_scratch_) + heap_bytes(sort_key_) + heap_bytes(sort_order_) +
+                     heap_bytes(column_scratch_) + heap_bytes(increment_scratch_) +
+                     permute_scratch_.bytes();
+  for (const StripSchedule& s : st_.schedules) m.particle_bytes += s.bytes();
+  m.grid_bytes = heap_bytes(smoothing_moments_) + heap_bytes(sort_start_) + projection_.bytes();
+  for (const GridLayer& layer : st_.layers) m.grid_bytes += layer.bytes();
+  return m;
+}
+
+template <int P>
 std::vector<std::string> BsmpmSimulation<P>::describe_effects() const {
   std::vector<std::string> lines;
   for (const Body& b : st_.bodies)
@@ -135,6 +150,7 @@ std::vector<std::string> BsmpmSimulation<P>::describe_effects() const {
 template <int P>
 void BsmpmSimulation<P>::sample_probes() {
   if (probes_.empty()) return;
+  const PhaseScope timed(st_.timer, StepPhase::kProbes);
   const ProbeContext ctx{st_.particles, st_.bodies, st_.index_of_id, st_.time};
   for (auto& probe : probes_) probe->maybe_sample(ctx);
 }
@@ -155,13 +171,17 @@ void BsmpmSimulation<P>::restore(Particles particles, const StepCounters& counte
 
 template <int P>
 void BsmpmSimulation<P>::advance(double dt) {
+  const PhaseScope timed(st_.timer, StepPhase::kOther);  // each phase times itself (phase_timer.hpp)
   st_.dt = dt;
   st_.diagnostics.reset();
   if (settings_.sort_interval > 0 && st_.step > 0 && st_.step % settings_.sort_interval == 0)
     sort_particles_by_cell();
   compute_weights();
   particle_to_grid();                       // eqs. 5-7
-  for (auto* e : force_hooks_) e->grid_forces(st_);  // eq. 8
+  for (auto* e : force_hooks_) {  // eq. 8
+    const PhaseScope timed(st_.timer, StepPhase::kEffects);
+    e->grid_forces(st_);
+  }
   update_grid_velocity(dt);                 // eqs. 9-10 and the essential conditions
   stats_.work += st_.diagnostics.work;      // what the constraints did to the motion
   if (settings_.velocity_update == SolverSettings::VelocityUpdate::kApic) move_particles_and_remap_momentum<true>(dt);
@@ -178,55 +198,66 @@ void BsmpmSimulation<P>::advance(double dt) {
 }
 
 // Particles of each body sorted by cell (x-major, like the control points), so that the
-// scatter and gather walk the grid in order.
+// scatter and gather walk the grid in order. A counting sort: stable (the order a stable
+// comparison sort gives), linear in the particles and cells, and into buffers kept from one
+// sort to the next, so that it allocates nothing after the first.
 template <int P>
 void BsmpmSimulation<P>::sort_particles_by_cell() {
+  const PhaseScope timed(st_.timer, StepPhase::kSort);
   auto& ps = st_.particles;
   const int cy = st_.grid.by.cells();
-  std::vector<std::uint32_t> order;
-  std::vector<std::int64_t> key;
+  const std::size_t cells = std::size_t(st_.grid.bx.cells()) * cy;
   for (const Body& b : st_.bodies) {
     const std::size_t n = b.size();
-    key.resize(n);
-    order.resize(n);
+    sort_key_.resize(n);
+    sort_order_.resize(n);
+    sort_start_.assign(cells + 1, 0);
     for (std::size_t k = 0; k < n; ++k) {
       const Vec2& x = ps.x[b.begin + k];
-      key[k] = std::int64_t(st_.grid.bx.cell_of(x.x())) * cy + st_.grid.by.cell_of(x.y());
+      sort_key_[k] = std::uint32_t(st_.grid.bx.cell_of(x.x())) * cy + st_.grid.by.cell_of(x.y());
+      ++sort_start_[sort_key_[k] + 1];
     }
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t c) { return key[a] < key[c]; });
-    ps.permute(b.begin, order);
+    std::partial_sum(sort_start_.begin(), sort_start_.end(), sort_start_.begin());
+    for (std::size_t k = 0; k < n; ++k) sort_order_[sort_start_[sort_key_[k]]++] = static_cast<std::uint32_t>(k);
+    ps.permute(b.begin, sort_order_, permute_scratch_);
   }
   for (std::size_t p = 0; p < ps.size(); ++p) st_.index_of_id[ps.id[p]] = static_cast<std::uint32_t>(p);
 }
 
+// The basis at each particle, and per body its scatter schedule and the box of control
+// points it touches. One parallel pass per body: the box as exact min/max reductions (the
+// same for any thread count), the first columns copied into a compact array from which the
+// serial schedule build reads 4 bytes a particle instead of striding through the weights.
 template <int P>
 void BsmpmSimulation<P>::compute_weights() {
+  const PhaseScope timed(st_.timer, StepPhase::kWeights);
   auto& ps = st_.particles;
-  const long n = static_cast<long>(ps.size());
-#pragma omp parallel for schedule(static)
-  for (long p = 0; p < n; ++p) {
-    auto& w = st_.weights[p];
-    w.i0 = st_.grid.bx.evaluate(ps.x[p].x(), w.wx, w.gx);
-    w.j0 = st_.grid.by.evaluate(ps.x[p].y(), w.wy, w.gy);
-  }
+  column_scratch_.resize(ps.size());
   for (auto& layer : st_.layers) layer.active = NodeBox{};
   for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
     const Body& body = st_.bodies[b];
-    st_.schedules[b].build(body.begin, body.end, st_.grid.nx(), [&](std::size_t p) { return st_.weights[p].i0; });
-    if (body.size() == 0) continue;
+    const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
     int i0 = st_.grid.nx(), i1 = 0, j0 = st_.grid.ny(), j1 = 0;
-    for (std::size_t p = body.begin; p < body.end; ++p) {
-      const auto& w = st_.weights[p];
-      i0 = std::min(i0, w.i0); i1 = std::max(i1, w.i0);
-      j0 = std::min(j0, w.j0); j1 = std::max(j1, w.j0);
+#pragma omp parallel for schedule(static) reduction(min : i0, j0) reduction(max : i1, j1)
+    for (long p = begin; p < end; ++p) {
+      auto& w = st_.weights[p];
+      w.i0 = st_.grid.bx.evaluate(ps.x[p].x(), w.wx, w.gx);
+      w.j0 = st_.grid.by.evaluate(ps.x[p].y(), w.wy, w.gy);
+      column_scratch_[p] = w.i0;
+      i0 = std::min(i0, w.i0);
+      i1 = std::max(i1, w.i0);
+      j0 = std::min(j0, w.j0);
+      j1 = std::max(j1, w.j0);
     }
+    st_.schedules[b].build(body.begin, body.end, st_.grid.nx(), [&](std::size_t p) { return column_scratch_[p]; });
+    if (body.size() == 0) continue;
     st_.layers[body.layer].active.include(NodeBox{i0, i1 + P + 1, j0, j1 + P + 1});
   }
 }
 
 template <int P>
 void BsmpmSimulation<P>::particle_to_grid() {
+  const PhaseScope timed(st_.timer, StepPhase::kParticleToGrid);
   for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
     // Mass gradients only for fields that take part in contact (their normals).
     const GridLayer& layer = st_.layers[st_.bodies[b].layer];
@@ -278,11 +309,16 @@ void BsmpmSimulation<P>::scatter_body(std::size_t b) {
 
 template <int P>
 void BsmpmSimulation<P>::constrain(VelocityPhase phase) {
-  for (auto* e : velocity_hooks_) e->constrain_velocity(st_, phase);
+  for (auto* e : velocity_hooks_) {
+    const PhaseScope timed(st_.timer, st_.timer && e->phase() == EffectPhase::kContact ? StepPhase::kContact
+                                                                                         : StepPhase::kEffects);
+    e->constrain_velocity(st_, phase);
+  }
 }
 
 template <int P>
 void BsmpmSimulation<P>::update_grid_velocity(double dt) {
+  const PhaseScope timed(st_.timer, StepPhase::kGridUpdate);
   const int ny = st_.grid.ny();
   const double cut = st_.mass_cutoff;
   for (auto& layer : st_.layers)
@@ -413,6 +449,7 @@ inline Vec2 shift_of(const ParticleWeights<P>& w, const std::vector<double>& vol
 template <int P>
 template <bool kAffine>
 void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
+  const PhaseScope timed(st_.timer, StepPhase::kGridToParticle);
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
   const double flip = settings_.flip_fraction;
@@ -474,6 +511,7 @@ void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
 // conditions again: the strain increment (eq. 14) is taken from it.
 template <int P>
 void BsmpmSimulation<P>::update_remap_velocity() {
+  const PhaseScope timed(st_.timer, StepPhase::kGridUpdate);
   const int ny = st_.grid.ny();
   const double cut = st_.mass_cutoff;
   for (auto& layer : st_.layers)
@@ -490,6 +528,7 @@ void BsmpmSimulation<P>::update_remap_velocity() {
 // state turned non-finite or left the density range makes the step invalid.
 template <int P>
 typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_deformation_and_stress(double dt) {
+  const PhaseScope timed(st_.timer, StepPhase::kStress);
   DeformationUpdate all;
   for (std::size_t b = 0; b < st_.bodies.size(); ++b) {
     const Body& body = st_.bodies[b];
@@ -522,7 +561,10 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
       gradient_scratch_[p] = L;
       increment_scratch_[p] = (Mat2::Identity() + dt * L).determinant() - 1.0;
     }
-    projection_.project(st_, st_.schedules[body.index], body.begin, body.end, increment_scratch_);
+    {
+      const PhaseScope timed(st_.timer, StepPhase::kSmoothing);
+      projection_.project(st_, st_.schedules[body.index], body.begin, body.end, increment_scratch_);
+    }
 #pragma omp parallel for schedule(static)
     for (long p = body.begin; p < body.end; ++p) ps.J[p] *= 1.0 + increment_scratch_[p];
   } else if (smooth) {
@@ -635,6 +677,7 @@ void BsmpmSimulation<P>::throw_instability() const {
 // the step's weights S_Ip(x^k) only localise the fit, which stays exact for linear fields.
 template <int P>
 void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
+  const PhaseScope timed(st_.timer, StepPhase::kSmoothing);
   const int ny = st_.grid.ny();
   const double ihx = 1.0 / st_.grid.cell_size().x(), ihy = 1.0 / st_.grid.cell_size().y();
   const std::vector<double>& gx = greville_x_;
@@ -717,6 +760,7 @@ void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
 
 template <int P>
 void BsmpmSimulation<P>::clear_grid() {
+  const PhaseScope timed(st_.timer, StepPhase::kClearGrid);
   const int ny = st_.grid.ny();
   for (auto& layer : st_.layers) {
     const NodeBox& b = layer.active;

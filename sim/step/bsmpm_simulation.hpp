@@ -36,6 +36,8 @@ class BsmpmSimulation final : public Simulation {
   const std::vector<std::unique_ptr<Probe>>& probes() const override { return probes_; }
   void sample_probes() override;
   void restore(Particles particles, const StepCounters& counters, const std::vector<ProbeState>& probes) override;
+  void set_phase_timer(PhaseTimer* timer) override { st_.timer = timer; }
+  MemoryUse memory_use() const override;
 
   // Exposed for the unit tests of the transfers.
   StepState<P>& state() { return st_; }
@@ -81,6 +83,9 @@ class BsmpmSimulation final : public Simulation {
   Vec2 affine_floor_ = Vec2::Zero();        // APIC: floor of D_p's diagonal [m2]
   std::vector<double> inverse_integral_x_, inverse_integral_y_;  // 1 / integral of N_i (particle shifting)
   std::vector<Mat2> gradient_scratch_;
+  std::vector<std::uint32_t> sort_key_, sort_order_, sort_start_;  // sort_particles_by_cell()
+  std::vector<int> column_scratch_;  // compute_weights(): each particle's first column
+  Particles::PermuteScratch permute_scratch_;
   DilatationProjection<P> projection_;      // only with FluidVolume::kProjected
   std::vector<double> increment_scratch_;
   double max_signal_speed_ = 0.0;

@@ -102,6 +102,11 @@ class DilatationProjection {
   }
 
   int cells_x_ = 0, cells_y_ = 0, ny_ = 0;
+
+ public:
+  std::size_t bytes() const { return heap_bytes(weighted_) + heap_bytes(volume_); }
+
+ private:
   std::vector<double> weighted_, volume_;  // sum psi V r and sum psi V per lower function
   std::array<double, 2> origin_{}, inverse_cell_{};
   ClampedBSpline<(kLower > 0 ? kLower : 1)> bx_, by_;

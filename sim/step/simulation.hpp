@@ -103,6 +103,15 @@ struct StepDiagnostics {
   }
 };
 
+// Heap bytes the solver holds, by what they scale with (bsmpm bench reports them per item).
+struct MemoryUse {
+  std::size_t particle_bytes = 0;  // per-particle arrays: state, basis weights, schedules, scratch
+  std::size_t grid_bytes = 0;      // per-control-point arrays: the grid layers, smoothing moments
+  std::size_t particles = 0, control_points = 0;
+};
+
+class PhaseTimer;
+
 // Counters over the whole run (a checkpoint holds them).
 struct SimulationStats {
   long clamped_positions = 0;  // particle positions pushed back inside the domain
@@ -148,6 +157,10 @@ class Simulation {
   virtual const std::vector<std::unique_ptr<Probe>>& probes() const = 0;
   // Samples every probe at the current state (the step does this after each advance()).
   virtual void sample_probes() = 0;
+  // Times each phase of the steps that follow into `timer` (step/phase_timer.hpp); null,
+  // the default, times nothing.
+  virtual void set_phase_timer(PhaseTimer*) {}
+  virtual MemoryUse memory_use() const { return {}; }
 };
 
 }  // namespace bsmpm

@@ -7,6 +7,7 @@
 #include "grid/grid.hpp"
 #include "particles/body.hpp"
 #include "particles/particles.hpp"
+#include "step/phase_timer.hpp"
 #include "step/simulation.hpp"
 #include "step/strip_schedule.hpp"
 
@@ -35,6 +36,7 @@ struct StepState {
   double dt = 0.0;
   long step = 0;
   double mass_cutoff = 0.0;  // nodes lighter than this carry no velocity
+  PhaseTimer* timer = nullptr;  // wall time per phase: set by bsmpm bench only, else null
 };
 
 // Loops over the control points of a box.

@@ -10,6 +10,8 @@
 
 #include <omp.h>
 
+#include "core/types.hpp"
+
 namespace bsmpm {
 
 class StripSchedule {
@@ -28,6 +30,8 @@ class StripSchedule {
     for (std::size_t p = begin; p < end; ++p)
       order_[fill_[column_of(p) / kStripWidth]++] = static_cast<std::uint32_t>(p);
   }
+
+  std::size_t bytes() const { return heap_bytes(offsets_) + heap_bytes(fill_) + heap_bytes(order_); }
 
   // Calls f(p) for every particle; no two concurrent calls touch the same control point.
   template <class F>

@@ -24,6 +24,13 @@ fs::path scratch() {
 
 test::ProgramResult bsmpm_with(const std::string& args) { return test::run_program(args, scratch() / "program.log"); }
 
+// The program run through `prefix` (e.g. "env VAR=value").
+test::ProgramResult bsmpm_with(const std::string& args, const std::string& prefix) {
+  const fs::path log = scratch() / "program.log";
+  const int status = std::system((prefix + " " + BSMPM_EXECUTABLE + " " + args + " > " + log.string() + " 2>&1").c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::read_text(log)};
+}
+
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 const std::string kScene = test::scene_path("hydrostatic_tank.toml");
@@ -115,13 +122,16 @@ TEST_CASE("bsmpm run refuses an occupied --out and one that cannot be created", 
 
 namespace {
 
-// The fields of a flat JSON object, checked to be valid JSON by Python's parser (a
-// dependency of scripts/setup), one "key=value" line each; lists become "a,b".
+// The fields of a JSON object, checked to be valid JSON by Python's parser (a dependency of
+// scripts/setup), one "key=value" line each; lists become "a,b", and the members of a nested
+// object "key.member=value".
 std::map<std::string, std::string> json_fields(const std::string& json) {
   const fs::path in = scratch() / "bench.json", out = scratch() / "bench.fields";
   std::ofstream(in) << json;
   const std::string cmd = "python3 -c \"import json, sys; d = json.load(open(sys.argv[1])); "
-                          "[print(k + '=' + (','.join(map(str, v)) if isinstance(v, list) else str(v))) for k, v in d.items()]\" " +
+                          "[print(k + '=' + (','.join(map(str, v)) if isinstance(v, list) else str(v))) for k, v in d.items() "
+                          "if not isinstance(v, dict)]; "
+                          "[print(k + '.' + m + '=' + str(u)) for k, v in d.items() if isinstance(v, dict) for m, u in v.items()]\" " +
                           in.string() + " > " + out.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   INFO(test::read_text(out));
@@ -141,7 +151,7 @@ TEST_CASE("bsmpm bench --json prints one valid JSON object with the run's facts"
   // A scene path that needs escaping in JSON: a double quote and a backslash in its name.
   const fs::path scene = scratch() / "tank \"quoted\" \\ name.toml";
   fs::copy_file(kScene, scene, fs::copy_options::overwrite_existing);
-  const auto r = bsmpm_with("bench '" + scene.string() + "' --steps 3 --warmup 1 --threads 2 --json");
+  const auto r = bsmpm_with("bench '" + scene.string() + "' --steps 3 --warmup 1 --threads 2 --set time.end=1 --json");
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
@@ -160,5 +170,45 @@ TEST_CASE("bsmpm bench --json prints one valid JSON object with the run's facts"
   CHECK(seconds > 0.0);
   CHECK(per_step == Approx(seconds / 3).epsilon(1e-4));
   CHECK(rate == Approx(6400 * 3 / seconds).epsilon(1e-4));
-  CHECK(f.size() == 11);
+  CHECK(f.at("overrides") == "time.end=1");
+  CHECK(f.at("omp_wait_policy") == "PASSIVE");  // set by ctest (tests/CMakeLists.txt)
+  // Memory: the grid has (40 + 2) x (60 + 2) control points at order 2; a particle holds at
+  // least its position, velocity, mass, volume, J, F, stress and weights (> 150 bytes).
+  CHECK(f.at("control_points") == std::to_string(42 * 62));
+  CHECK(std::stod(f.at("bytes_per_particle")) > 150.0);
+  CHECK(std::stod(f.at("bytes_per_control_point")) > 50.0);
+  // The phases: exclusive, so that they add up to the time per step (to the clock's
+  // resolution); this scene's steps have each of these.
+  double sum = 0.0;
+  std::size_t phases = 0;
+  for (const auto& [key, value] : f)
+    if (key.rfind("phase_seconds_per_step.", 0) == 0) {
+      sum += std::stod(value);
+      ++phases;
+    }
+  for (const char* phase : {"weights", "particle_to_grid", "effects", "grid_update", "grid_to_particle", "stress",
+                            "clear_grid"}) {
+    INFO(phase);
+    CHECK(std::stod(f.at(std::string("phase_seconds_per_step.") + phase)) > 0.0);
+  }
+  CHECK(sum == Approx(per_step).epsilon(0.01));
+  CHECK(f.size() - phases == 16);
+}
+
+TEST_CASE("OpenMP threads of bsmpm wait passively unless the environment says otherwise", "[cli][bench]") {
+  // With OMP_DISPLAY_ENV=verbose libgomp prints what it read: a spin count of 0 is passive
+  // waiting. ctest sets OMP_WAIT_POLICY for the tests, so each case sets or clears it here.
+  const auto passive = bsmpm_with("--version", "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose");
+  INFO(passive.output);
+  CHECK(passive.status == 0);
+  CHECK(contains(passive.output, "GOMP_SPINCOUNT = '0'"));
+  CHECK(contains(passive.output, "bsmpm "));  // the version, printed once by the restarted program
+  const auto active = bsmpm_with("--version", "env OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=verbose");
+  CHECK(contains(active.output, "OMP_WAIT_POLICY = 'ACTIVE'"));
+  CHECK(!contains(active.output, "GOMP_SPINCOUNT = '0'"));
+  const auto spin =
+      bsmpm_with("bench " + kScene + " --steps 1 --warmup 0 --json", "env -u OMP_WAIT_POLICY GOMP_SPINCOUNT=1000");
+  CHECK(contains(spin.output, "\"omp_wait_policy\": \"GOMP_SPINCOUNT=1000\""));
+  const auto unset = bsmpm_with("bench " + kScene + " --steps 1 --warmup 0 --json", "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT");
+  CHECK(contains(unset.output, "\"omp_wait_policy\": \"PASSIVE\""));
 }

@@ -1,0 +1,91 @@
+// scripts/bench --compare: the change per phase and in total between two records of
+// `bsmpm bench --json`, given as two files or as one file and a fresh run of the same case.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "test_support.hpp"
+
+using namespace bsmpm;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratch() {
+  static const fs::path root = test::scratch_dir("bench_script");
+  return root;
+}
+
+test::ProgramResult bench_script(const std::string& args) {
+  const fs::path log = scratch() / "bench.log";
+  const std::string cmd = "BSMPM_EXECUTABLE='" + std::string(BSMPM_EXECUTABLE) + "' " +
+                          test::source_path("scripts/bench") + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::read_text(log)};
+}
+
+// The line of `text` that starts with `label` followed by a space, its words joined by one
+// space (the columns' widths are not the test's business).
+std::string line_of(const std::string& text, const std::string& label) {
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind(label + " ", 0) == 0) {
+      std::istringstream words(line);
+      std::string joined;
+      for (std::string w; words >> w;) joined += (joined.empty() ? "" : " ") + w;
+      return joined;
+    }
+  return "";
+}
+
+std::string record(double weights, double p2g, double total, double rate, int threads) {
+  std::ostringstream s;
+  s << "{\"scene\": \"scenes/x.toml\", \"overrides\": [], \"particles\": 1000, \"threads\": " << threads
+    << ", \"steps\": 10, \"cell_size\": [0.005, 0.005], \"seconds_per_step\": " << total
+    << ", \"particle_steps_per_second\": " << rate
+    << ", \"bytes_per_particle\": 300, \"bytes_per_control_point\": 100, "
+       "\"phase_seconds_per_step\": {\"weights\": "
+    << weights << ", \"particle_to_grid\": " << p2g << "}}\n";
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("scripts/bench --compare shows the change per phase and in total", "[cli][bench]") {
+  const fs::path old_json = scratch() / "old.json", new_json = scratch() / "new.json";
+  std::ofstream(old_json) << record(0.002, 0.004, 0.010, 1e5, 2);
+  std::ofstream(new_json) << record(0.001, 0.005, 0.008, 1.25e5, 2);
+  const auto r = bench_script("--compare " + old_json.string() + " " + new_json.string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  // phase, old ms per step, new ms per step, change
+  CHECK(line_of(r.output, "weights") == "weights 2.000 1.000 -50.0 %");
+  CHECK(line_of(r.output, "particle_to_grid") == "particle_to_grid 4.000 5.000 +25.0 %");
+  CHECK(line_of(r.output, "total") == "total 10.000 8.000 -20.0 %");
+  CHECK(line_of(r.output, "particle-steps/s") == "particle-steps/s 1e+05 1.25e+05 +25.0 %");
+  CHECK(line_of(r.output, "bytes/particle") == "bytes/particle 300.0 300.0 +0.0 %");
+  CHECK(r.output.find("differ") == std::string::npos);
+  // Records of different thread counts are compared, with a note.
+  std::ofstream(new_json) << record(0.001, 0.005, 0.008, 1.25e5, 1);
+  CHECK(bench_script("--compare " + old_json.string() + " " + new_json.string()).output.find("differ in") !=
+        std::string::npos);
+}
+
+TEST_CASE("scripts/bench --compare OLD.json runs OLD's case again", "[cli][bench]") {
+  const fs::path old_json = scratch() / "hydrostatic.json";
+  const std::string scene = test::scene_path("hydrostatic_tank.toml");
+  const auto made =
+      test::run_program("bench " + scene + " --steps 2 --warmup 0 --threads 1 --set time.end=1 --json", scratch() / "made.log");
+  REQUIRE(made.status == 0);
+  std::ofstream(old_json) << made.output;
+  const auto r = bench_script("--compare " + old_json.string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(r.output.find("new: " + scene + ", 6400 particles, 1 threads, 2 steps") != std::string::npos);
+  CHECK(r.output.find("differ") == std::string::npos);
+  CHECK(!line_of(r.output, "particle_to_grid").empty());
+  CHECK(!line_of(r.output, "total").empty());
+}
