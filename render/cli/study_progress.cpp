@@ -11,23 +11,34 @@ namespace bsmpm::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+// The files of a case directory whose appearance marks its progress.
+constexpr const char* kMarkers[] = {"metrics.json", "failed", "started"};
+}  // namespace
+
 StudyProgress::StudyProgress(fs::path out_dir, std::vector<std::string> keys, int slots)
     : cases_(std::move(out_dir) / "cases"), keys_(std::move(keys)), slots_(slots),
-      // File times have a coarse resolution on some file systems: a marker written in the
-      // same second as the start still counts as this invocation's.
-      start_(fs::file_time_type::clock::now() - std::chrono::seconds(1)),
-      start_clock_(std::chrono::steady_clock::now()) {}
+      start_clock_(std::chrono::steady_clock::now()) {
+  for (const auto& key : keys_)
+    for (const char* name : kMarkers) {
+      std::error_code ec;
+      const auto t = fs::last_write_time(cases_ / key / name, ec);
+      if (!ec) before_[key + "/" + name] = t;
+    }
+}
 
-bool StudyProgress::newer_than_start(const fs::path& p) const {
+bool StudyProgress::written_since_start(const std::string& key, const char* name) const {
   std::error_code ec;
-  const auto t = fs::last_write_time(p, ec);
-  return !ec && t >= start_;
+  const auto t = fs::last_write_time(cases_ / key / name, ec);
+  if (ec) return false;
+  const auto it = before_.find(key + "/" + name);
+  return it == before_.end() || it->second != t;
 }
 
 CaseState StudyProgress::state(const std::string& key) const {
   const fs::path dir = cases_ / key;
   if (fs::exists(dir / "metrics.json")) return CaseState::kDone;
-  if (newer_than_start(dir / "failed")) {
+  if (written_since_start(key, "failed")) {
     // The marker holds "exit status N"; 130 is a run stopped by Ctrl-C: it resumes.
     std::ifstream marker(dir / "failed");
     std::string word1, word2;
@@ -35,7 +46,7 @@ CaseState StudyProgress::state(const std::string& key) const {
     marker >> word1 >> word2 >> status;
     return status == 130 ? CaseState::kInterrupted : CaseState::kFailed;
   }
-  if (newer_than_start(dir / "started")) return CaseState::kRunning;
+  if (written_since_start(key, "started")) return CaseState::kRunning;
   return CaseState::kWaiting;
 }
 
@@ -63,7 +74,7 @@ StudyStatus StudyProgress::poll() {
     switch (state(key)) {
       case CaseState::kDone: {
         ++s.done;
-        if (!newer_than_start(cases_ / key / "metrics.json")) ++s.reused;
+        if (!written_since_start(key, "metrics.json")) ++s.reused;
         const double w = wall_seconds(key);
         if (w >= 0.0) wall_sum += w, ++wall_count;
         break;

@@ -1,7 +1,9 @@
 // The state of a running study as its case directories show it (docs/studies.md,
-// "Progress"): done (metrics.json), failed (a `failed` marker newer than this invocation;
-// interrupted if it says exit status 130), running (a `started` marker newer than it),
-// waiting; and an ETA from the mean wall time of the finished cases.
+// "Progress"): done (metrics.json), failed (a `failed` marker written by this invocation;
+// interrupted if it says exit status 130), running (a `started` marker written by it),
+// waiting; and an ETA from the mean wall time of the finished cases. "Written by this
+// invocation" means absent or different when the object was made: the markers' times are
+// snapshotted then, so no clock resolution or second-long slack decides what was reused.
 #pragma once
 
 #include <chrono>
@@ -30,13 +32,14 @@ class StudyProgress {
   std::string line(const StudyStatus& s) const;  // one line of progress
 
  private:
-  bool newer_than_start(const std::filesystem::path& p) const;
+  // True if `key`'s marker `name` exists and was not there, with this time, at construction.
+  bool written_since_start(const std::string& key, const char* name) const;
   double wall_seconds(const std::string& key);  // from the case's summary.json, cached
 
   std::filesystem::path cases_;
   std::vector<std::string> keys_;
   int slots_;
-  std::filesystem::file_time_type start_;
+  std::map<std::string, std::filesystem::file_time_type> before_;  // "key/marker" -> time at construction
   std::chrono::steady_clock::time_point start_clock_;
   std::map<std::string, double> wall_;
 };
