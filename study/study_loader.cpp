@@ -26,13 +26,15 @@ void flatten(const toml::table& table, const std::string& prefix, std::vector<As
   }
 }
 
-std::vector<Assignment> read_set_table(TableReader& t, std::string_view key) {
+// An axis value may set nothing (`set = {}`: the base scene as it is, the baseline of an axis
+// that changes one choice at a time); the study's own `set` must set something.
+std::vector<Assignment> read_set_table(TableReader& t, std::string_view key, bool allow_empty) {
   const toml::node& n = t.node(key);
   const toml::table* table = n.as_table();
   if (!table) t.fail(key, "expected a table of scene keys, e.g. { \"grid.cell_size\" = 0.01 }");
   std::vector<Assignment> out;
   flatten(*table, "", out);
-  if (out.empty()) t.fail(key, "sets no scene key");
+  if (out.empty() && !allow_empty) t.fail(key, "sets no scene key");
   return out;
 }
 
@@ -83,7 +85,7 @@ Axis read_axis(TableReader& t, const std::vector<Axis>& earlier) {
       TableReader vt(*table, prefix, v.where);
       v.coordinate = vt.number_or("value", static_cast<double>(i));
       v.label = vt.string_or("label", vt.has("value") ? number_label(v.coordinate) : "value " + std::to_string(i));
-      v.assignments = read_set_table(vt, "set");
+      v.assignments = read_set_table(vt, "set", true);
       vt.finish();
     }
     a.values.push_back(std::move(v));
@@ -120,7 +122,7 @@ StudyDescription load_study_text(const std::string& text, const std::string& pat
     if (!fs::is_regular_file(s.scene_path) || !scene_file) st.fail("scene", "no scene file " + s.scene_path);
     s.scene_text.assign(std::istreambuf_iterator<char>(scene_file), std::istreambuf_iterator<char>());
     s.threads = static_cast<int>(st.integer_or("threads", 1, 1, 1024));
-    if (st.has("set")) s.defaults = read_set_table(st, "set");
+    if (st.has("set")) s.defaults = read_set_table(st, "set", false);
     st.finish();
   }
   if (auto sensor = t.optional_table("sensor")) s.sensor = read_sensor(*sensor);

@@ -160,3 +160,20 @@ TEST_CASE("metrics and plots must name probes, columns and metrics that exist", 
     CHECK(e.message().find("no axis named \"H\"") != std::string::npos);
   }
 }
+
+TEST_CASE("an axis value may set nothing (the base scene), the study's own set may not", "[study]") {
+  const std::string axis =
+      "[[axes]]\nname = \"setting\"\nvalues = [{ value = 0, label = \"shipped\", set = {} },\n"
+      "  { value = 1, label = \"order 3\", set = { \"grid.order\" = 3 } }]\n";
+  const StudyDescription s = load_study_text(kHeader + axis, kPath);
+  const auto cases = expand_cases(s, "v1");
+  REQUIRE(cases.size() == 2);
+  CHECK(cases[0].overrides() == std::vector<std::string>{"grid.cell_size=0.02"});  // the study's set only
+  CHECK(cases[1].overrides().back() == "grid.order=3");
+  CHECK(cases[0].key != cases[1].key);
+  validate_cases(s, cases);
+  const std::string empty_study_set = "[study]\nname = \"s\"\nscene = \"../../scenes/lobovsky_h300.toml\"\nset = {}\n";
+  const SceneError e = study_error(empty_study_set + kAxis);
+  CHECK(e.where().line == 4);
+  CHECK(e.message() == "sets no scene key");
+}
