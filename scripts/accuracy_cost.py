@@ -1,0 +1,350 @@
+#!/usr/bin/python3
+"""The accuracy-cost map (docs/accuracy-cost.md): the error of every case of the
+accuracy-cost studies against its reference, and its cost.
+
+    scripts/accuracy_cost.py [--column DIR] [--hydrostatic DIR] [--martin-moyce DIR]
+                             [--gate DIR] [--lobovsky DIR] [--extra PROBLEM=LABEL=RUN_DIR ...]
+                             [--png media/accuracy_cost.png] [--csv OUT.csv] [--markdown OUT.md]
+
+Each DIR is the output directory of `bsmpm study studies/accuracy_cost_PROBLEM.toml --dir DIR`
+(its CSV names every case's run directory); --extra adds single runs (e.g. the Lobovsky tank
+at 4 mm as shipped, run with `bsmpm run`). The errors, each relative, as
+docs/accuracy-cost.md defines them:
+  column        RMS over the run of the top point's displacement error, over g H^2 / c^2
+                (the closed form of docs/method.md §11)
+  hydrostatic   the largest error of the three probes' mean pressure over the last 0.1 s,
+                against the weight of the compressed column above each
+  martin_moyce  RMS of (Z - Z_table) / Z_table over Table 2, T = 0.41 ... 2.32
+  gate          RMS of the tip's dx against the mean of the five published curves over
+                0-0.5 s, over the mean published peak (the peak's own error is listed too)
+  lobovsky      mean of the relative errors of the impact time at 30 mm, the first-impact
+                peaks at 30 and 80 mm and the means over T* = 3.5-5.5 at 30 and 80 mm,
+                against the measured run through the same sensor model
+Reference data: tests/data/ (provenance in tests/data/README.md).
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.path.join(ROOT, "tests", "data")
+BSMPM = os.environ.get("BSMPM", os.path.join(ROOT, "build", "render", "bsmpm"))
+
+
+def read_probe(path):
+    """A probe CSV (DIR/<probe>.csv): '#' comment, a header, rows."""
+    with open(path) as f:
+        lines = [l for l in f if not l.startswith("#")]
+    header = lines[0].strip().split(",")
+    rows = np.array([[float(x) for x in l.split(",")] for l in lines[1:] if l.strip()])
+    return {name: rows[:, k] for k, name in enumerate(header)}
+
+
+# -- 1. The elastic column: the closed form of docs/method.md §11 (d'Alembert) ------------
+COLUMN_H, COLUMN_C, COLUMN_G = 1.0, math.sqrt(1.0e8 / 1000.0), 9.81
+
+
+def column_static(Y):
+    return -(COLUMN_G / COLUMN_C**2) * (COLUMN_H * Y - 0.5 * Y * Y)
+
+
+def column_extended(Y):
+    H = COLUMN_H
+    Y = np.fmod(Y, 4 * H)
+    Y = np.where(Y < -2 * H, Y + 4 * H, Y)
+    Y = np.where(Y > 2 * H, Y - 4 * H, Y)
+    sign = np.where(Y < 0, -1.0, 1.0)
+    Y = np.abs(Y)
+    return sign * column_static(np.where(Y > H, 2 * H - Y, Y))
+
+
+def column_exact(Y, t):
+    ct = COLUMN_C * t
+    return column_static(Y) - 0.5 * (column_extended(Y - ct) + column_extended(Y + ct))
+
+
+def column_error(run):
+    p = read_probe(os.path.join(run, "top.csv"))
+    Y = p["y"] - p["dy"]
+    e = p["dy"] - column_exact(Y, p["t"])
+    return {"error": float(np.sqrt(np.mean(e[1:] ** 2)) / (COLUMN_G * COLUMN_H**2 / COLUMN_C**2))}
+
+
+# -- 2. The hydrostatic tank --------------------------------------------------------------
+def hydrostatic_error(run):
+    rho, g, K = 1000.0, 9.81, 1.0e6  # scenes/hydrostatic_tank.toml
+    worst = 0.0
+    for depth_mm in (50, 100, 150):
+        p = read_probe(os.path.join(run, "P_depth%d.csv" % depth_mm))
+        t_end = p["t"][-1]
+        mean = float(np.mean(p["P"][p["t"] >= t_end - 0.1]))
+        d = depth_mm * 1e-3
+        exact = rho * g * d * (1.0 + rho * g * d / (2.0 * K))  # compressed column, first order in p/K
+        worst = max(worst, abs(mean - exact) / exact)
+    return {"error": worst}
+
+
+# -- 3. Martin & Moyce --------------------------------------------------------------------
+def martin_moyce_table():
+    rows = np.loadtxt(os.path.join(DATA, "martin_moyce_1952", "front_n2_2.txt"))
+    return rows[rows[:, 0] <= 2.5]
+
+
+def martin_moyce_error(run):
+    a, g = 0.05715, 9.81
+    p = read_probe(os.path.join(run, "front.csv"))
+    T = p["t"] * math.sqrt(2 * g / a)
+    Z = p["front"] / a
+    table = martin_moyce_table()
+    rel = (np.interp(table[:, 0], T, Z) - table[:, 1]) / table[:, 1]
+    return {"error": float(np.sqrt(np.mean(rel**2))), "largest": float(np.max(np.abs(rel)))}
+
+
+# -- 4. The elastic gate ------------------------------------------------------------------
+def gate_reference():
+    curves = []
+    for name in ("walhorn", "idelsohn", "ryzhakov", "rafiee", "li"):
+        c = np.loadtxt(os.path.join(DATA, "walhorn_elastic_gate", "mps_jl_%s.csv" % name), delimiter=",")
+        curves.append(c)
+    t = np.linspace(0.0, min(c[-1, 0] for c in curves), 1001)
+    mean = np.mean([np.interp(t, c[:, 0], c[:, 1]) for c in curves], axis=0)
+    peaks = [float(np.max(c[:, 1])) for c in curves]
+    return t, mean, float(np.mean(peaks))
+
+
+def gate_error(run):
+    t_ref, mean, mean_peak = gate_reference()
+    p = read_probe(os.path.join(run, "tip.csv"))
+    t = t_ref[t_ref <= p["t"][-1]]
+    dx = np.interp(t, p["t"], p["dx"])
+    rms = float(np.sqrt(np.mean((dx - mean[: len(t)]) ** 2))) / mean_peak
+    return {"error": rms, "peak_error": (float(np.max(p["dx"])) - mean_peak) / mean_peak}
+
+
+# -- 5. The Lobovsky tank -----------------------------------------------------------------
+LOBOVSKY_METRICS = ("impact_z30_star", "peak_z30", "mean_z30", "peak_z80", "mean_z80")
+
+
+def sensor_series(args):
+    out = subprocess.run([BSMPM, "metrics"] + args, check=True, capture_output=True, text=True).stdout
+    rows = [l.split(",") for l in out.splitlines() if l and not l[0].isalpha() and not l.startswith("#")]
+    a = np.array([[float(x) for x in r] for r in rows])
+    return a[:, 1], a[:, 2]  # T*, value
+
+
+def lobovsky_values(Ts, P30, Ts80, P80):
+    def window(T, P, lo, hi):
+        return P[(T >= lo) & (T <= hi)]
+    impact = float(Ts[np.argmax(P30 > 0.05)])
+    return {
+        "impact_z30_star": impact,
+        "peak_z30": float(np.max(window(Ts, P30, 0.0, 3.5))),
+        "mean_z30": float(np.mean(window(Ts, P30, 3.5, 5.5))),
+        "peak_z80": float(np.max(window(Ts80, P80, 2.3, 3.3))),
+        "mean_z80": float(np.mean(window(Ts80, P80, 3.5, 5.5))),
+    }
+
+
+_LOBOVSKY_MEASURED = None
+
+
+def lobovsky_measured():
+    global _LOBOVSKY_MEASURED
+    if _LOBOVSKY_MEASURED is None:
+        d = os.path.join(DATA, "lobovsky2014_h300")
+        T30, P30 = sensor_series(["--series-file", os.path.join(d, "sensor3_z30mm_run.dat"), "--length", "0.3"])
+        T80, P80 = sensor_series(["--series-file", os.path.join(d, "sensor4_z80mm_run.dat"), "--length", "0.3"])
+        _LOBOVSKY_MEASURED = lobovsky_values(T30, P30, T80, P80)
+    return _LOBOVSKY_MEASURED
+
+
+def lobovsky_error(run):
+    T30, P30 = sensor_series([run, "--series", "P_z30"])
+    T80, P80 = sensor_series([run, "--series", "P_z80"])
+    sim, exp = lobovsky_values(T30, P30, T80, P80), lobovsky_measured()
+    rel = {k: (sim[k] - exp[k]) / exp[k] for k in LOBOVSKY_METRICS}
+    out = {"error": float(np.mean([abs(v) for v in rel.values()]))}
+    out.update({k + "_error": v for k, v in rel.items()})
+    return out
+
+
+PROBLEMS = {
+    "column": ("Elastic column (closed form)", column_error, "top displacement, RMS"),
+    "hydrostatic": ("Hydrostatic tank", hydrostatic_error, "probe pressure, largest"),
+    "martin_moyce": ("Martin & Moyce", martin_moyce_error, "surge front, RMS"),
+    "gate": ("Elastic gate", gate_error, "tip dx, RMS vs published mean"),
+    "lobovsky": ("Lobovsky tank, H = 300 mm", lobovsky_error, "mean of 5 relative errors"),
+}
+
+
+def study_cases(problem, directory):
+    csvs = [f for f in os.listdir(directory) if f.endswith(".csv") and f.startswith("accuracy_cost_")]
+    if not csvs:
+        sys.exit("accuracy_cost.py: no accuracy_cost_*.csv in %s" % directory)
+    with open(os.path.join(directory, csvs[0])) as f:
+        rows = list(csv.DictReader(f))
+    cases = []
+    for r in rows:
+        if r["status"] != "completed":
+            continue
+        parts = []
+        for axis in ("grid", "order", "ppc", "update", "setting"):
+            if axis + "_label" in r:
+                value = r[axis + "_label"]
+                parts.append(("h = %g mm" % (float(r["grid"]) * 1e3)) if axis == "grid" and problem != "column"
+                             else ("h = H/%d" % round(1 / float(r["grid"])) if axis == "grid" else
+                                   ("order %s" % value if axis == "order" else
+                                    ("%sx%s" % (value, value) if axis == "ppc" else value))))
+        cases.append({"label": ", ".join(parts), "run": os.path.join(directory, r["run_dir"]), "row": r})
+    return cases
+
+
+def summary_of(run):
+    with open(os.path.join(run, "summary.json")) as f:
+        s = json.load(f)
+    return s
+
+
+def column_convergence(cases):
+    """The column's error against h for each spline order (2x2 per cell, pure FLIP), and the
+    order of convergence between successive grids, log2(e(2h) / e(h))."""
+    md = ["### Elastic column: convergence by spline order (2x2 per cell, pure FLIP)\n",
+          "| order | " + " | ".join("H/%d" % n for n in (8, 16, 32, 64)) + " | orders |", "|---|---|---|---|---|---|"]
+    for order in ("1", "2", "3"):
+        errors = {}
+        for c in cases:
+            r = c["row"]
+            if r.get("order_label") == order and r.get("ppc_label") == "2" and r.get("update_label") == "FLIP":
+                errors[round(1 / float(r["grid"]))] = c["error"]
+        cells = [errors.get(n) for n in (8, 16, 32, 64)]
+        rates = ["%.2f" % math.log2(a / b) for a, b in zip(cells, cells[1:]) if a and b]
+        md.append("| %s | %s | %s |" % (order, " | ".join("%.3g %%" % (100 * e) if e else "-" for e in cells),
+                                        ", ".join(rates)))
+    return md + [""]
+
+
+def pareto(points):
+    """Indices of the points no other point beats in both cost and error."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+    front, best = [], float("inf")
+    for i in order:
+        if points[i][1] < best:
+            front.append(i)
+            best = points[i][1]
+    return front
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    for name in PROBLEMS:
+        ap.add_argument("--" + name.replace("_", "-"), dest=name, help="study output directory")
+    ap.add_argument("--extra", action="append", default=[], help="PROBLEM=LABEL=RUN_DIR")
+    ap.add_argument("--png")
+    ap.add_argument("--csv")
+    ap.add_argument("--markdown")
+    args = ap.parse_args()
+
+    results = {}
+    for problem, (title, error_of, _) in PROBLEMS.items():
+        cases = study_cases(problem, getattr(args, problem)) if getattr(args, problem) else []
+        for extra in args.extra:
+            p, label, run = extra.split("=", 2)
+            if p == problem:
+                cases.append({"label": label, "run": run, "row": {}})
+        for c in cases:
+            s = summary_of(c["run"])
+            c.update(error_of(c["run"]))
+            c["wall"] = float(s["wall_seconds"])
+            c["steps"] = int(s["steps"])
+            c["particles"] = int(s["particles"])
+            c["threads"] = int(s.get("threads", 1))
+            c["memory_mb"] = float(s.get("peak_memory_mb", float("nan")))
+            c["particle_steps"] = c["steps"] * c["particles"]
+        if cases:
+            results[problem] = cases
+
+    if args.csv:
+        with open(args.csv, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["problem", "setting", "error", "wall_seconds", "threads", "steps", "particles",
+                        "particle_steps", "peak_memory_mb"])
+            for problem, cases in results.items():
+                for c in cases:
+                    w.writerow([problem, c["label"], "%.4g" % c["error"], "%.3f" % c["wall"], c["threads"],
+                                c["steps"], c["particles"], c["particle_steps"], "%.1f" % c["memory_mb"]])
+
+    md = []
+    for problem, cases in results.items():
+        title, _, what = PROBLEMS[problem]
+        md.append("### %s (error: %s)\n" % (title, what))
+        md.append("| setting | error | wall time [s] | particle-steps | peak memory [MB] |")
+        md.append("|---|---|---|---|---|")
+        front = set(pareto([(c["wall"], c["error"]) for c in cases]))
+        for i, c in sorted(enumerate(cases), key=lambda ic: ic[1]["wall"]):
+            md.append("| %s%s | %.3g %% | %.2f | %.3g | %.0f |" % (c["label"], " (Pareto)" if i in front else "",
+                                                                   100 * c["error"], c["wall"], c["particle_steps"],
+                                                                   c["memory_mb"]))
+        md.append("")
+        for target in (0.10, 0.05, 0.02, 0.01, 0.005):
+            ok = [c for c in cases if c["error"] <= target]
+            if ok:
+                best = min(ok, key=lambda c: c["wall"])
+                md.append("- %g %%: %s, %.3g %% in %.2f s" % (100 * target, best["label"], 100 * best["error"],
+                                                             best["wall"]))
+            else:
+                md.append("- %g %%: none of these settings (the best: %.3g %%)" %
+                          (100 * target, 100 * min(c["error"] for c in cases)))
+        md.append("")
+    if "column" in results:
+        md += column_convergence(results["column"])
+    text = "\n".join(md)
+    if args.markdown:
+        with open(args.markdown, "w") as f:
+            f.write(text + "\n")
+    else:
+        print(text)
+
+    if args.png:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        n = len(results)
+        cols = min(n, 3)
+        rows = (n + cols - 1) // cols
+        fig, axes = plt.subplots(rows, cols, figsize=(6.2 * cols, 5.0 * rows), squeeze=False)
+        for ax, (problem, cases) in zip(axes.flat, results.items()):
+            title, _, what = PROBLEMS[problem]
+            x = [c["wall"] for c in cases]
+            y = [max(c["error"], 1e-6) for c in cases]
+            ax.scatter(x, y, s=14, color="tab:blue", zorder=3)
+            front = pareto(list(zip(x, y)))
+            ax.plot([x[i] for i in front], [y[i] for i in front], "-", color="tab:red", lw=1.2, zorder=2,
+                    label="Pareto front")
+            label_all = len(cases) <= 14
+            for i, c in enumerate(cases):
+                if label_all or i in front:
+                    ax.annotate(c["label"], (x[i], y[i]), fontsize=6, xytext=(3, 2), textcoords="offset points")
+            for target in (0.10, 0.05, 0.02):
+                ax.axhline(target, color="0.8", lw=0.6, zorder=1)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("wall time [s], 1 thread, 2-core machine")
+            ax.set_ylabel("relative error (%s)" % what)
+            ax.set_title(title, fontsize=10)
+            ax.legend(fontsize=7, loc="upper right")
+            ax.grid(True, which="both", alpha=0.25)
+        for ax in list(axes.flat)[n:]:
+            ax.axis("off")
+        fig.suptitle("What accuracy costs in time (docs/accuracy-cost.md)")
+        fig.tight_layout()
+        fig.savefig(args.png, dpi=110)
+
+
+if __name__ == "__main__":
+    main()
