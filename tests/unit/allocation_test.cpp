@@ -32,6 +32,15 @@ void* operator new(std::size_t n) { return counted_allocation(n); }
 void* operator new[](std::size_t n) { return counted_allocation(n); }
 void* operator new(std::size_t n, std::align_val_t a) { return counted_aligned_allocation(n, a); }
 void* operator new[](std::size_t n, std::align_val_t a) { return counted_aligned_allocation(n, a); }
+// The nothrow forms too (Catch2 registers its tests with them): every form must come from
+// the same malloc, or AddressSanitizer reports a new/free mismatch (scripts/test --sanitize).
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return std::malloc(n ? n : 1);
+}
+void* operator new[](std::size_t n, const std::nothrow_t& tag) noexcept { return operator new(n, tag); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
