@@ -37,7 +37,8 @@ const char* kHelp =
     "  DIR/run.xdmf    the frames for ParaView\n"
     "  DIR/NAME.csv    one table per probe, with a header row\n"
     "  DIR/conservation.csv  mass, momentum, energies and the work of walls and contact per frame\n"
-    "  DIR/summary.json  steps, wall time, threads, particles, peak memory, exit status\n"
+    "  DIR/summary.json  steps, wall time (and the predicted one), threads, particles, peak\n"
+    "                  memory, exit status\n"
     "  DIR/checkpoint.h5  the state to resume from (every --checkpoint-every, and when stopped)\n"
     "\n"
     "Before anything is built, the run's cost is predicted (and its wall time, from the rates\n"
@@ -138,6 +139,7 @@ int resume_run(const Arguments& args, const std::vector<std::string>& argv, int 
   RunWriter writer(dir.string(), c.writer, gravity_of(scene), *sim);
   RunContext ctx{scene, *sim, writer, dir, threads, args.flag("--quiet"), {}, c.scene, c.wall_seconds};
   if (args.has("--checkpoint-every")) ctx.schedule = CheckpointSchedule::parse(args.option("--checkpoint-every"));
+  ctx.predicted_wall_seconds = wall.seconds;
   ctx.checkpoint_scene.command_line += "; " + command_line(argv);
   return drive_run(ctx, c.loop);
 }
@@ -192,6 +194,7 @@ int command_run(const std::vector<std::string>& argv) {
   }
   RunContext ctx{scene, *sim, *writer, dir, threads, args.flag("--quiet"), schedule,
                  CheckpointScene{scene.path, scene.source_text, args.all("--set"), prov.command_line}, 0.0};
+  ctx.predicted_wall_seconds = wall.seconds;
   return drive_run(ctx, RunLoopState{});
 }
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "io/run_summary.hpp"
 #include "scene/calibration_file.hpp"
 #include "test_support.hpp"
 
@@ -125,11 +126,21 @@ TEST_CASE("bsmpm bench records its rate, and check and run predict the wall time
   r = bsmpm_calibrated(file, "check " + kScene + " --threads 1 --set grid.order=1");
   CHECK(contains(line_starting(r.output, "wall     "), "; the nearest record: order 2, the run's 1"));
 
-  // The run prints the same line.
+  // The run prints the same line and keeps the prediction beside the actual wall time.
   r = bsmpm_calibrated(file, "run " + kScene + " --out " + (dir / "run").string() +
                                  " --quiet --threads 1 --set time.end=0.002 --set output.frame_interval=0.002");
   REQUIRE(r.status == 0);
   CHECK(contains(r.output, "wall     about "));
+  const RunSummary summary = read_run_summary((dir / "run").string());
+  CHECK(summary.predicted_wall_seconds > 0.0);
+  CHECK(summary.wall_seconds > 0.0);
+  // Without a calibration the summary says null.
+  REQUIRE(bsmpm_calibrated(dir / "none" / "calibration.json",
+                           "run " + kScene + " --out " + (dir / "run_uncalibrated").string() +
+                               " --quiet --threads 1 --set time.end=0.002 --set output.frame_interval=0.002")
+              .status == 0);
+  CHECK(std::isnan(read_run_summary((dir / "run_uncalibrated").string()).predicted_wall_seconds));
+  CHECK(contains(test::read_text(dir / "run_uncalibrated" / "summary.json"), "\"predicted_wall_seconds\": null"));
 }
 
 TEST_CASE("A calibration file that cannot be read is a warning naming it, not a failure", "[calibration]") {
