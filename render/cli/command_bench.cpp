@@ -63,13 +63,16 @@ std::vector<std::pair<const char*, double>> phase_table(const PhaseTimer& timer,
 
 // Adds the measured rate to the calibration file; a failure is a warning (the measurement
 // stands). Says where it went unless the output is a JSON record.
-void record_rate(const SceneDescription& scene, int threads, double rate, std::size_t particles, bool quiet) {
+void record_rate(const SceneDescription& scene, const Simulation& sim, int threads, double rate, bool quiet) {
+  if (sim.particles().size() == 0 || !(rate > 0.0)) return;  // nothing measured
   CalibrationRecord r;
   r.machine = this_machine();
   r.threads = threads;
   r.features = rate_features(scene, predict_run_cost(scene));
   r.particle_steps_per_second = rate;
-  r.particles = static_cast<double>(particles);
+  r.particles = static_cast<double>(sim.particles().size());
+  for (const Body& b : sim.bodies())
+    if (is_rigid(b.material)) r.rigid_particles += static_cast<double>(b.size());
   r.scene = scene.path;
   r.recorded_at = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   r.program_version = kVersion;
@@ -145,7 +148,7 @@ int command_bench(const std::vector<std::string>& argv) {
       std::printf("  %-18s %8.3f  %5.1f %%\n", name, seconds * 1e3, 100.0 * seconds / per_step);
   }
   std::fflush(stdout);
-  record_rate(scene, threads, rate, n, args.flag("--json"));
+  record_rate(scene, *sim, threads, rate, args.flag("--json"));
   return kOk;
 }
 

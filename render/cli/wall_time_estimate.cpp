@@ -18,20 +18,22 @@ WallTimeEstimate estimate_wall_time(const SceneDescription& scene, const RunCost
   const std::string path = calibration_path();
   const CalibrationFile file = read_calibration(path);
   WallTimeEstimate e{std::nan(""), "", file.warning};
-  const auto choice = choose_calibration(file.records, this_machine(), threads, rate_features(scene, cost));
+  const RateFeatures features = rate_features(scene, cost);
+  const auto choice = choose_calibration(file.records, this_machine(), threads, features);
   if (!choice) {
     e.line = format("wall     no calibration: run `bsmpm bench` once (it records this machine's rate in %s)",
                     path.empty() ? "$BSMPM_CALIBRATION" : path.c_str());
     return e;
   }
   const CalibrationRecord& r = *choice->record;
-  e.seconds = predicted_wall_seconds(cost, r);
+  const WallTime w = predict_wall_time(cost, features, r);
+  e.seconds = w.seconds;
   const double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-  e.line = format("wall     about %s on %d thread%s: %.3g particle-steps at %.3g M/s, the rate `bsmpm bench %s` "
-                  "measured (%.0f particles, %d thread%s) %s ago",
+  e.line = format("wall     about %s on %d thread%s: %.3g particle-steps at %.3g M/s and %.0f frames, from the rate "
+                  "`bsmpm bench %s` measured (%.3g M/s, %.0f particles, %d thread%s) %s ago",
                   duration_text(e.seconds).c_str(), threads, threads == 1 ? "" : "s", cost.particle_steps,
-                  r.particle_steps_per_second * 1e-6, r.scene.c_str(), r.particles, r.threads, r.threads == 1 ? "" : "s",
-                  format_age(now - r.recorded_at).c_str());
+                  w.particle_steps_per_second * 1e-6, cost.frames, r.scene.c_str(), r.particle_steps_per_second * 1e-6,
+                  r.particles, r.threads, r.threads == 1 ? "" : "s", format_age(now - r.recorded_at).c_str());
   if (choice->differences.empty()) {
     e.line += " (same features)";
   } else {

@@ -1,7 +1,8 @@
 // The predicted wall time of a run on this machine, as `bsmpm check` and the start of
 // `bsmpm run` print it: the run's particle-steps at the rate of the calibration record that
-// fits it best (scene/run_calibration.hpp, read from scene/calibration_file.hpp). Without a
-// record it says how to make one; it never fails a command.
+// fits it best, scaled to the run's features, and its frames (scene/run_calibration.hpp, the
+// records read from scene/calibration_file.hpp). Without a record it says how to make one;
+// it never fails a command.
 #pragma once
 
 #include <string>

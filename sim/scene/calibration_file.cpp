@@ -47,11 +47,13 @@ CalibrationRecord record_of(const std::map<std::string, JsonScalar>& o, std::siz
   r.features.grid_fields = static_cast<int>(field<double>(o, "grid_fields", i, path));
   r.particle_steps_per_second = field<double>(o, "particle_steps_per_second", i, path);
   r.particles = field<double>(o, "particles", i, path);
+  r.rigid_particles = field<double>(o, "rigid_particles", i, path);
   r.scene = field<std::string>(o, "scene", i, path);
   r.recorded_at = field<double>(o, "recorded_at", i, path);
   r.program_version = field<std::string>(o, "program_version", i, path);
-  if (!(r.particle_steps_per_second > 0.0) || r.threads < 1)
-    throw IoError(format("%s: record %zu has a rate or thread count that is not positive", path.c_str(), i + 1));
+  if (!(r.particle_steps_per_second > 0.0) || r.threads < 1 || !(r.particles > 0.0) ||
+      !(r.rigid_particles >= 0.0 && r.rigid_particles <= r.particles))
+    throw IoError(format("%s: record %zu has a rate, thread or particle count out of range", path.c_str(), i + 1));
   return r;
 }
 
@@ -81,6 +83,7 @@ std::string calibration_json(const std::vector<CalibrationRecord>& records) {
         .field("grid_fields", r.features.grid_fields)
         .field("particle_steps_per_second", r.particle_steps_per_second)
         .field("particles", r.particles)
+        .field("rigid_particles", r.rigid_particles)
         .field("scene", r.scene)
         .field("recorded_at", r.recorded_at)
         .field("recorded", utc_text(r.recorded_at))

@@ -95,8 +95,42 @@ std::optional<CalibrationChoice> choose_calibration(const std::vector<Calibratio
   return best;
 }
 
-double predicted_wall_seconds(const RunCost& cost, const CalibrationRecord& record) {
-  return cost.particle_steps / record.particle_steps_per_second;
+double relative_cost(const RateFeatures& f) {
+  // Measured as CPU time per particle-step of `bsmpm bench` on 1 thread (110 steps less 10,
+  // the median of three sittings), one feature changed at a time from plain fluid:
+  // lobovsky_h300 at 4 mm (45,000 particles) for the order, the velocity update, the fluid
+  // volume and shifting; the hydrostatic tank at 2 mm (40,000) split in two bodies in contact
+  // for a second field. The factors multiply: APIC with smoothing measured 1.77 (1.34 x 1.31
+  // = 1.76), all three of lobovsky_h300 2.08 (2.23). An elastic particle costs what a fluid
+  // one does (0.97-1.03). docs/validation.md, "Predicted wall time".
+  const double order = f.order == 1 ? 0.6 : f.order == 3 ? 1.34 : 1.0;
+  const double update = f.velocity_update == "apic" ? 1.34 : 1.0;
+  const double volume = f.fluid_volume == "smoothed" ? 1.31 : f.fluid_volume == "projected" ? 1.08 : 1.0;
+  const double shifting = f.shifting ? 1.27 : 1.0;
+  const double fields = std::pow(1.09, std::max(0, f.grid_fields - 1));
+  return order * update * volume * shifting * fields;
+}
+
+namespace {
+
+// The work of one step in deformable-particle units.
+double work_per_step(double particles, double rigid, const RateFeatures& f) {
+  return relative_cost(f) * (particles - rigid + kRigidParticleCost * rigid);
+}
+
+}  // namespace
+
+WallTime predict_wall_time(const RunCost& cost, const RateFeatures& features, const CalibrationRecord& record) {
+  WallTime w;
+  // Work per second this machine did in the record, then the run's work at that pace.
+  const double work_rate = record.particle_steps_per_second / record.particles *
+                           work_per_step(record.particles, record.rigid_particles, record.features);
+  const double work = cost.steps * work_per_step(cost.particles, cost.rigid_particles, features);
+  w.stepping_seconds = work / work_rate;
+  w.particle_steps_per_second = cost.particle_steps / w.stepping_seconds;
+  w.frame_seconds = cost.frames * (kFrameSeconds + kFrameSecondsPerParticle * cost.particles);
+  w.seconds = w.stepping_seconds + w.frame_seconds;
+  return w;
 }
 
 std::string format_age(double s) {

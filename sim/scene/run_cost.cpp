@@ -56,7 +56,11 @@ RunCost predict_run_cost(const SceneDescription& scene) {
   RunCost c;
   const Vec2 h = scene.actual_cell_size();
   const Vec2 spacing = h / scene.particles_per_cell;
-  for (const BodyDescription& b : scene.bodies) c.particles += particle_count(b.shape, spacing);
+  for (const BodyDescription& b : scene.bodies) {
+    const double n = particle_count(b.shape, spacing);
+    c.particles += n;
+    if (is_rigid(b.material)) c.rigid_particles += n;
+  }
 
   const ContactParameters* contacts = scene.effect_parameters<ContactParameters>();
   c.grid_fields = contacts && !contacts->pairs.empty() ? static_cast<int>(scene.bodies.size()) : 1;

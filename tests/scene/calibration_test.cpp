@@ -99,6 +99,7 @@ TEST_CASE("bsmpm bench records its rate, and check and run predict the wall time
   CHECK(first.threads == 1);
   CHECK(first.scene == kScene);
   CHECK(first.particles == 6400);
+  CHECK(first.rigid_particles == 0);
   CHECK(first.particle_steps_per_second > 0.0);
   CHECK(first.features.order == 2);
   CHECK(first.features.velocity_update == "flip");
@@ -121,7 +122,8 @@ TEST_CASE("bsmpm bench records its rate, and check and run predict the wall time
   CHECK(r.status == 0);
   CHECK(contains(wall, "wall     about "));
   CHECK(contains(wall, " on 1 thread: "));
-  CHECK(contains(wall, "the rate `bsmpm bench " + kScene + "` measured (6400 particles, 1 thread)"));
+  CHECK(contains(wall, " frames, from the rate `bsmpm bench " + kScene + "` measured ("));
+  CHECK(contains(wall, " M/s, 6400 particles, 1 thread) "));
   CHECK(contains(wall, " ago (same features)"));
   r = bsmpm_calibrated(file, "check " + kScene + " --threads 1 --set grid.order=1");
   CHECK(contains(line_starting(r.output, "wall     "), "; the nearest record: order 2, the run's 1"));

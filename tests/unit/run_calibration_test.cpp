@@ -125,13 +125,48 @@ TEST_CASE("choose_calibration: the same key, else the nearest, the newest among 
   CHECK(!choose_calibration({record(1, run, 0.0, 100.0)}, kHere, 1, run));
 }
 
-TEST_CASE("predicted_wall_seconds: particle-steps at the record's rate", "[calibration]") {
+TEST_CASE("predict_wall_time: particle-steps at the record's rate, scaled to the run's features, and frames",
+          "[calibration]") {
   RunCost cost;
   cost.particles = 28800;
   cost.steps = 2500;
   cost.particle_steps = cost.particles * cost.steps;
-  const CalibrationRecord r = record(1, RateFeatures{}, 7.2e6, 0.0);
-  CHECK(predicted_wall_seconds(cost, r) == Approx(10.0).epsilon(1e-12));
+  cost.frames = 10;
+  const RateFeatures plain;
+  CHECK(relative_cost(plain) == 1.0);
+  const CalibrationRecord r = record(1, plain, 7.2e6, 0.0);
+  const WallTime same = predict_wall_time(cost, plain, r);
+  CHECK(same.particle_steps_per_second == Approx(7.2e6).epsilon(1e-12));
+  CHECK(same.stepping_seconds == Approx(10.0).epsilon(1e-12));
+  CHECK(same.frame_seconds == Approx(10 * (kFrameSeconds + kFrameSecondsPerParticle * 28800)).epsilon(1e-12));
+  CHECK(same.seconds == Approx(same.stepping_seconds + same.frame_seconds).epsilon(1e-12));
+
+  // Each feature adds its share, the order scales the whole; a record of costlier features
+  // runs the plain scene faster by their ratio.
+  const RateFeatures lobovsky = features_of("lobovsky_h300.toml");
+  CHECK(relative_cost(lobovsky) > 1.5);
+  RateFeatures order3 = lobovsky;
+  order3.order = 3;
+  CHECK(relative_cost(order3) > relative_cost(lobovsky));
+  RateFeatures two_fields = plain;
+  two_fields.grid_fields = 2;
+  CHECK(relative_cost(two_fields) > 1.0);
+  const WallTime from_costlier = predict_wall_time(cost, plain, record(1, lobovsky, 7.2e6, 0.0));
+  CHECK(from_costlier.stepping_seconds == Approx(10.0 / relative_cost(lobovsky)).epsilon(1e-12));
+  CHECK(from_costlier.particle_steps_per_second == Approx(7.2e6 * relative_cost(lobovsky)).epsilon(1e-12));
+
+  // Rigid particles are cheaper than deformable ones, in the record and in the run.
+  RunCost half_rigid = cost;
+  half_rigid.rigid_particles = cost.particles / 2;
+  CHECK(predict_wall_time(half_rigid, plain, r).stepping_seconds ==
+        Approx(10.0 * (0.5 + 0.5 * kRigidParticleCost)).epsilon(1e-12));
+  CalibrationRecord rigid_record = r;
+  rigid_record.rigid_particles = r.particles / 2;
+  CHECK(predict_wall_time(cost, plain, rigid_record).stepping_seconds ==
+        Approx(10.0 / (0.5 + 0.5 * kRigidParticleCost)).epsilon(1e-12));
+}
+
+TEST_CASE("format_age: seconds, minutes, hours, days", "[calibration]") {
   CHECK(format_age(40.0) == "40 s");
   CHECK(format_age(12 * 60.0) == "12 min");
   CHECK(format_age(3.2 * 3600.0) == "3.2 h");
