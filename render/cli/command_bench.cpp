@@ -1,6 +1,8 @@
 // bsmpm bench SCENE: times the step of a scene (no output files) and reports time per step
 // and particle-steps per second with the thread and core counts, the time of each phase of
 // the step (step/phase_timer.hpp) and the solver's memory per particle and per control point.
+// Every run also records its rate in this machine's calibration file (scene/calibration_file.hpp),
+// from which `bsmpm check` and `bsmpm run` predict the wall time of a run.
 #include <omp.h>
 
 #include <algorithm>
@@ -14,7 +16,10 @@
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "core/version.hpp"
 #include "io/json.hpp"
+#include "scene/calibration_file.hpp"
+#include "scene/run_cost.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "step/phase_timer.hpp"
@@ -32,7 +37,13 @@ const char* kHelp =
     "thread count and the machine's core count; the time per step of each phase of the step\n"
     "(\"outside\" is the bench loop between steps, \"other\" the step outside every phase); and\n"
     "the solver's heap bytes per particle and per control point. --json prints one JSON object\n"
-    "instead (a record for scripts/bench --compare).\n";
+    "instead (a record for scripts/bench --compare).\n"
+    "\n"
+    "The rate is also recorded in this machine's calibration file ($BSMPM_CALIBRATION, else\n"
+    "$XDG_CACHE_HOME/bsmpm/calibration.json, else ~/.cache/bsmpm/calibration.json), one record per\n"
+    "machine, thread count and scene features (spline order, materials, fluid volume, velocity\n"
+    "update, shifting, grid fields), the newest kept; `bsmpm check` and `bsmpm run` predict a\n"
+    "run's wall time from it.\n";
 
 // How idle OpenMP threads wait: as the environment says; main.cpp sets PASSIVE when it says
 // nothing (or, should that have failed, libgomp spins for a while: "default").
@@ -49,7 +60,32 @@ std::vector<std::pair<const char*, double>> phase_table(const PhaseTimer& timer,
     if (timer.seconds(k) > 0.0) rows.emplace_back(kStepPhaseNames[k], timer.seconds(k) / steps);
   return rows;
 }
+
+// Adds the measured rate to the calibration file; a failure is a warning (the measurement
+// stands). Says where it went unless the output is a JSON record.
+void record_rate(const SceneDescription& scene, const Simulation& sim, int threads, double rate, bool quiet) {
+  if (sim.particles().size() == 0 || !(rate > 0.0)) return;  // nothing measured
+  CalibrationRecord r;
+  r.machine = this_machine();
+  r.threads = threads;
+  r.features = rate_features(scene, predict_run_cost(scene));
+  r.particle_steps_per_second = rate;
+  r.particles = static_cast<double>(sim.particles().size());
+  for (const Body& b : sim.bodies())
+    if (is_rigid(b.material)) r.rigid_particles += static_cast<double>(b.size());
+  r.scene = scene.path;
+  r.recorded_at = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  r.program_version = kVersion;
+  const std::string path = calibration_path();
+  try {
+    const std::string warning = record_calibration(path, r);
+    if (!warning.empty()) std::fprintf(stderr, "bsmpm: warning: %s\n", warning.c_str());
+    if (!quiet) std::printf("calibration          recorded in %s\n", path.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bsmpm: warning: the rate is not recorded: %s\n", e.what());
+  }
 }
+}  // namespace
 
 int command_bench(const std::vector<std::string>& argv) {
   Arguments args(argv, {"--help", "--json"}, {"--steps", "--warmup", "--threads"}, {"--set"});
@@ -111,6 +147,8 @@ int command_bench(const std::vector<std::string>& argv) {
     for (const auto& [name, seconds] : phases)
       std::printf("  %-18s %8.3f  %5.1f %%\n", name, seconds * 1e3, 100.0 * seconds / per_step);
   }
+  std::fflush(stdout);
+  record_rate(scene, *sim, threads, rate, args.flag("--json"));
   return kOk;
 }
 

@@ -37,11 +37,13 @@ const char* kHelp =
     "  DIR/run.xdmf    the frames for ParaView\n"
     "  DIR/NAME.csv    one table per probe, with a header row\n"
     "  DIR/conservation.csv  mass, momentum, energies and the work of walls and contact per frame\n"
-    "  DIR/summary.json  steps, wall time, threads, particles, peak memory, exit status\n"
+    "  DIR/summary.json  steps, wall time (and the predicted one), threads, particles, peak\n"
+    "                  memory, exit status\n"
     "  DIR/checkpoint.h5  the state to resume from (every --checkpoint-every, and when stopped)\n"
     "\n"
-    "Before anything is built, the run's cost is predicted; a run that would not fit in memory\n"
-    "or on the disk, or whose time step is absurdly small, is refused (exit 2).\n"
+    "Before anything is built, the run's cost is predicted (and its wall time, from the rates\n"
+    "`bsmpm bench` recorded); a run that would not fit in memory or on the disk, or whose time\n"
+    "step is absurdly small, is refused (exit 2).\n"
     "\n"
     "options\n"
     "  --out DIR          output directory (created; must not hold another run)\n"
@@ -130,12 +132,14 @@ int resume_run(const Arguments& args, const std::vector<std::string>& argv, int 
   if (c.probes.size() != sim->probes().size()) throw IoError(path.string() + ": its probes are not those of its scene");
   sim->restore(std::move(c.particles), c.counters, c.probes);
   print_scene_summary(stdout, scene, *sim, threads);
-  print_run_cost(stdout, cost, warnings);
+  const WallTimeEstimate wall = estimate_wall_time(scene, cost, threads);
+  print_run_cost(stdout, cost, warnings, wall);
   std::printf("resume   %s at step %ld, t = %.6g s (frame %ld)\n", dir.string().c_str(), sim->step_count(),
               sim->time(), c.writer.frames);
   RunWriter writer(dir.string(), c.writer, gravity_of(scene), *sim);
   RunContext ctx{scene, *sim, writer, dir, threads, args.flag("--quiet"), {}, c.scene, c.wall_seconds};
   if (args.has("--checkpoint-every")) ctx.schedule = CheckpointSchedule::parse(args.option("--checkpoint-every"));
+  ctx.predicted_wall_seconds = wall.seconds;
   ctx.checkpoint_scene.command_line += "; " + command_line(argv);
   return drive_run(ctx, c.loop);
 }
@@ -165,7 +169,8 @@ int command_run(const std::vector<std::string>& argv) {
   auto sim = build_simulation(scene);
   prepare_directory(dir, args.flag("--force"));
   print_scene_summary(stdout, scene, *sim, threads);
-  print_run_cost(stdout, cost, warnings);
+  const WallTimeEstimate wall = estimate_wall_time(scene, cost, threads);
+  print_run_cost(stdout, cost, warnings, wall);
 
   RunProvenance prov;
   prov.title = scene.title;
@@ -189,6 +194,7 @@ int command_run(const std::vector<std::string>& argv) {
   }
   RunContext ctx{scene, *sim, *writer, dir, threads, args.flag("--quiet"), schedule,
                  CheckpointScene{scene.path, scene.source_text, args.all("--set"), prov.command_line}, 0.0};
+  ctx.predicted_wall_seconds = wall.seconds;
   return drive_run(ctx, RunLoopState{});
 }
 

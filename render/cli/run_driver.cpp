@@ -25,6 +25,7 @@ RunSummary summarize(const RunContext& ctx, long steps, double wall_seconds) {
   s.time = ctx.sim.time();
   s.end_time = ctx.scene.time.end;
   s.wall_seconds = wall_seconds;
+  s.predicted_wall_seconds = ctx.predicted_wall_seconds;
   s.threads = ctx.threads;
   s.cores = static_cast<int>(std::thread::hardware_concurrency());
   s.particles = ctx.sim.particles().size();

@@ -5,6 +5,7 @@
 // checkpoint.h5 keeps the last good one), exit 3.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 
 #include "cli/checkpoint_schedule.hpp"
@@ -25,6 +26,7 @@ struct RunContext {
   CheckpointSchedule schedule;
   CheckpointScene checkpoint_scene;
   double previous_wall_seconds = 0.0;  // spent before a resume
+  double predicted_wall_seconds = std::nan("");  // of the whole run (cli/wall_time_estimate.hpp)
 };
 
 inline std::filesystem::path checkpoint_path(const std::filesystem::path& dir) { return dir / "checkpoint.h5"; }

@@ -30,12 +30,15 @@ void print_scene_summary(std::FILE* out, const SceneDescription& scene, const Si
   std::fflush(out);
 }
 
-void print_run_cost(std::FILE* out, const RunCost& cost, const std::vector<std::string>& warnings) {
+void print_run_cost(std::FILE* out, const RunCost& cost, const std::vector<std::string>& warnings,
+                    const WallTimeEstimate& wall) {
   std::fprintf(out, "cost     about %.4g particles, %.4g steps (dt %.3g s), %.4g particle-steps; memory %s, output %s "
                "(%.0f frames), checkpoint %s\n",
                cost.particles, cost.steps, cost.first_dt, cost.particle_steps, format_bytes(cost.memory_bytes).c_str(),
                format_bytes(cost.output_bytes).c_str(), cost.frames, format_bytes(cost.checkpoint_bytes).c_str());
+  std::fprintf(out, "%s\n", wall.line.c_str());
   for (const std::string& w : warnings) std::fprintf(out, "warning  %s\n", w.c_str());
+  if (!wall.warning.empty()) std::fprintf(out, "warning  %s\n", wall.warning.c_str());
   std::fflush(out);
 }
 

@@ -16,7 +16,7 @@ import os
 import subprocess
 import sys
 
-COSTS = ["wall_seconds", "steps", "particles", "peak_memory_mb", "particle_steps_per_second", "threads"]
+COSTS = ["wall_seconds", "predicted_wall_seconds", "steps", "particles", "peak_memory_mb", "particle_steps_per_second", "threads"]
 
 
 def read_json(path):
@@ -61,7 +61,8 @@ def main():
             row[a["name"] + "_label"] = v["label"]
         if os.path.exists(os.path.join("cases", key, "metrics.json")):
             summary = read_json(os.path.join("cases", key, "summary.json"))
-            row.update({c: summary[c] for c in costs})
+            # predicted_wall_seconds: null without a calibration, absent before it existed
+            row.update({c: ("" if summary.get(c) is None else summary[c]) for c in costs})
             metrics = case_metrics(plan, key)
             row.update({c: ("" if metrics.get(c) is None else metrics[c]) for c in metric_columns})
             row["status"] = summary["status"]

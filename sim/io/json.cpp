@@ -102,30 +102,55 @@ class FlatParser {
   FlatParser(const std::string& text, const std::string& source) : s_(text), source_(source) {}
 
   std::map<std::string, JsonScalar> object() {
+    expected_ = "a flat JSON object";
+    auto out = members();
+    end();
+    return out;
+  }
+
+  std::vector<std::map<std::string, JsonScalar>> array() {
+    expected_ = "a JSON array of flat objects";
+    std::vector<std::map<std::string, JsonScalar>> out;
+    expect('[');
+    if (peek() == ']') {
+      ++i_;
+      end();
+      return out;
+    }
+    while (true) {
+      out.push_back(members());
+      const char c = next();
+      if (c == ']') break;
+      if (c != ',') fail("expected ',' or ']'");
+    }
+    end();
+    return out;
+  }
+
+ private:
+  std::map<std::string, JsonScalar> members() {
     std::map<std::string, JsonScalar> out;
     expect('{');
     if (peek() == '}') {
       ++i_;
-      return end(out);
+      return out;
     }
     while (true) {
       const std::string k = string();
       expect(':');
       out[k] = scalar();
       const char c = next();
-      if (c == '}') return end(out);
+      if (c == '}') return out;
       if (c != ',') fail("expected ',' or '}'");
     }
   }
 
- private:
-  std::map<std::string, JsonScalar> end(std::map<std::string, JsonScalar>& out) {
-    if (peek() != '\0') fail("unexpected text after the object");
-    return out;
+  void end() {
+    if (peek() != '\0') fail("unexpected text after the value");
   }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw IoError(source_ + ": not a flat JSON object (" + what + " at offset " + std::to_string(i_) + ")");
+    throw IoError(source_ + ": not " + expected_ + " (" + what + " at offset " + std::to_string(i_) + ")");
   }
 
   char peek() {
@@ -153,7 +178,10 @@ class FlatParser {
         else if (e == 't') c = '\t';
         else if (e == 'u') {
           if (i_ + 4 > s_.size()) fail("truncated escape");
-          c = static_cast<char>(std::stoi(s_.substr(i_, 4), nullptr, 16));
+          unsigned code = 0;
+          const auto r = std::from_chars(s_.data() + i_, s_.data() + i_ + 4, code, 16);
+          if (r.ec != std::errc() || r.ptr != s_.data() + i_ + 4) fail("a bad \\u escape");
+          c = static_cast<char>(code);
           i_ += 4;
         } else c = e;
       }
@@ -184,6 +212,7 @@ class FlatParser {
 
   const std::string& s_;
   const std::string& source_;
+  std::string expected_;
   std::size_t i_ = 0;
 };
 
@@ -191,6 +220,10 @@ class FlatParser {
 
 std::map<std::string, JsonScalar> parse_flat_json_object(const std::string& text, const std::string& source) {
   return FlatParser(text, source).object();
+}
+
+std::vector<std::map<std::string, JsonScalar>> parse_flat_json_array(const std::string& text, const std::string& source) {
+  return FlatParser(text, source).array();
 }
 
 }  // namespace bsmpm

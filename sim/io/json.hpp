@@ -1,5 +1,5 @@
 // JSON for the small files other programs read (summary.json, a study's plan and metrics):
-// a writer for nested objects and arrays, and a reader for flat objects of scalars. Numbers
+// a writer for nested objects and arrays, and a reader for flat objects of scalars (and arrays of them). Numbers
 // are written in their shortest round-trip form; NaN and infinities as null.
 #pragma once
 
@@ -47,5 +47,8 @@ using JsonScalar = std::variant<std::monostate, bool, double, std::string>;
 
 // Parses `{"key": scalar, ...}`; throws IoError naming `source` on anything else.
 std::map<std::string, JsonScalar> parse_flat_json_object(const std::string& text, const std::string& source);
+
+// Parses `[{...}, ...]`, an array of flat objects; throws IoError naming `source` on anything else.
+std::vector<std::map<std::string, JsonScalar>> parse_flat_json_array(const std::string& text, const std::string& source);
 
 }  // namespace bsmpm

@@ -24,6 +24,7 @@ void write_run_summary(const std::string& dir, const RunSummary& s) {
       .field("time", s.time)
       .field("end_time", s.end_time)
       .field("wall_seconds", s.wall_seconds)
+      .field("predicted_wall_seconds", s.predicted_wall_seconds)
       .field("threads", s.threads)
       .field("cores", s.cores)
       .field("particles", static_cast<long>(s.particles))
@@ -72,6 +73,8 @@ RunSummary read_run_summary(const std::string& dir) {
   s.time = number("time");
   s.end_time = number("end_time");
   s.wall_seconds = number("wall_seconds");
+  // Absent from the summaries of versions before the prediction.
+  if (values.count("predicted_wall_seconds")) s.predicted_wall_seconds = number("predicted_wall_seconds");
   s.threads = static_cast<int>(number("threads"));
   s.cores = static_cast<int>(number("cores"));
   s.particles = static_cast<std::size_t>(number("particles"));

@@ -16,6 +16,7 @@ struct RunSummary {
   double time = 0.0;               // simulated time reached [s]
   double end_time = 0.0;           // the scene's end time [s]
   double wall_seconds = 0.0;       // stepping only (not loading or building)
+  double predicted_wall_seconds = std::nan("");  // before the start, from the calibration; unknown without one
   int threads = 0;
   int cores = 0;
   std::size_t particles = 0;

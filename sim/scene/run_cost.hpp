@@ -12,6 +12,7 @@ namespace bsmpm {
 
 struct RunCost {
   double particles = 0.0;       // as seeding will place them (exact for rectangles)
+  double rigid_particles = 0.0; // of them in rigid bodies
   int grid_fields = 1;          // velocity fields (one per body in contact, else one)
   double control_points = 0.0;  // per field
   double memory_bytes = 0.0;    // particles, grid fields and scratch of the running step
