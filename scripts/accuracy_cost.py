@@ -183,26 +183,57 @@ PROBLEMS = {
 }
 
 
+def grid_label(problem, h):
+    """The grid as the problem's own scale reads it: H/N for the column, a/N for Martin &
+    Moyce (a = 57.15 mm), millimetres for the rest."""
+    if problem == "column":
+        return "h = H/%d" % round(COLUMN_H / h)
+    if problem == "martin_moyce":
+        return "h = a/%d" % round(0.05715 / h)
+    return "h = %g mm" % (h * 1e3)
+
+
 def study_cases(problem, directory):
     csvs = [f for f in os.listdir(directory) if f.endswith(".csv") and f.startswith("accuracy_cost_")]
     if not csvs:
         sys.exit("accuracy_cost.py: no accuracy_cost_*.csv in %s" % directory)
     with open(os.path.join(directory, csvs[0])) as f:
         rows = list(csv.DictReader(f))
-    cases = []
+    cases, failed = [], []
     for r in rows:
-        if r["status"] != "completed":
-            continue
         parts = []
         for axis in ("grid", "order", "ppc", "update", "setting"):
-            if axis + "_label" in r:
-                value = r[axis + "_label"]
-                parts.append(("h = %g mm" % (float(r["grid"]) * 1e3)) if axis == "grid" and problem != "column"
-                             else ("h = H/%d" % round(1 / float(r["grid"])) if axis == "grid" else
-                                   ("order %s" % value if axis == "order" else
-                                    ("%sx%s" % (value, value) if axis == "ppc" else value))))
-        cases.append({"label": ", ".join(parts), "run": os.path.join(directory, r["run_dir"]), "row": r})
-    return cases
+            if axis + "_label" not in r:
+                continue
+            value = r[axis + "_label"]
+            if axis == "grid":
+                parts.append(grid_label(problem, float(r["grid"])))
+            elif axis == "order":
+                parts.append("order " + value)
+            elif axis == "ppc":
+                parts.append("%sx%s" % (value, value))
+            else:
+                parts.append(value)
+        case = {"label": ", ".join(parts), "run": os.path.join(directory, r["run_dir"]), "row": r}
+        if r["status"] == "completed":
+            cases.append(case)
+        elif r["status"] == "failed":
+            case["reason"] = failure_reason(case["run"])
+            failed.append(case)
+    return cases, failed
+
+
+def failure_reason(run):
+    """The program's error line from a failed case's log, shortened to its cause."""
+    try:
+        with open(os.path.join(run, "run.log")) as f:
+            for line in f:
+                if "error:" in line:
+                    text = line.split("error:", 1)[1].strip()
+                    return text.split(":")[0] if "numerical instability" in text else text[:80]
+    except OSError:
+        pass
+    return "failed"
 
 
 def summary_of(run):
@@ -250,9 +281,9 @@ def main():
     ap.add_argument("--markdown")
     args = ap.parse_args()
 
-    results = {}
+    results, failures = {}, {}
     for problem, (title, error_of, _) in PROBLEMS.items():
-        cases = study_cases(problem, getattr(args, problem)) if getattr(args, problem) else []
+        cases, failures[problem] = study_cases(problem, getattr(args, problem)) if getattr(args, problem) else ([], [])
         for extra in args.extra:
             p, label, run = extra.split("=", 2)
             if p == problem:
@@ -290,6 +321,8 @@ def main():
             md.append("| %s%s | %.3g %% | %.2f | %.3g | %.0f |" % (c["label"], " (Pareto)" if i in front else "",
                                                                    100 * c["error"], c["wall"], c["particle_steps"],
                                                                    c["memory_mb"]))
+        for c in failures.get(problem, []):
+            md.append("| %s | failed: %s | | | |" % (c["label"], c["reason"]))
         md.append("")
         for target in (0.10, 0.05, 0.02, 0.01, 0.005):
             ok = [c for c in cases if c["error"] <= target]
