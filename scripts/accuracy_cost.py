@@ -3,7 +3,7 @@
 accuracy-cost studies against its reference, and its cost.
 
     scripts/accuracy_cost.py [--column DIR] [--hydrostatic DIR] [--martin-moyce DIR]
-                             [--gate DIR] [--lobovsky DIR] [--extra PROBLEM=LABEL=RUN_DIR ...]
+                             [--gate DIR] [--lobovsky DIR] [--extra PROBLEM RUN_DIR LABEL ...]
                              [--png media/accuracy_cost.png] [--csv OUT.csv] [--markdown OUT.md]
 
 Each DIR is the output directory of `bsmpm study studies/accuracy_cost_PROBLEM.toml --dir DIR`
@@ -275,7 +275,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     for name in PROBLEMS:
         ap.add_argument("--" + name.replace("_", "-"), dest=name, help="study output directory")
-    ap.add_argument("--extra", action="append", default=[], help="PROBLEM=LABEL=RUN_DIR")
+    ap.add_argument("--extra", action="append", nargs=3, default=[], metavar=("PROBLEM", "RUN_DIR", "LABEL"),
+                    help="a single run of PROBLEM (e.g. made with bsmpm run) as one more case")
     ap.add_argument("--png")
     ap.add_argument("--csv")
     ap.add_argument("--markdown")
@@ -284,8 +285,7 @@ def main():
     results, failures = {}, {}
     for problem, (title, error_of, _) in PROBLEMS.items():
         cases, failures[problem] = study_cases(problem, getattr(args, problem)) if getattr(args, problem) else ([], [])
-        for extra in args.extra:
-            p, label, run = extra.split("=", 2)
+        for p, run, label in args.extra:
             if p == problem:
                 cases.append({"label": label, "run": run, "row": {}})
         for c in cases:
@@ -324,6 +324,13 @@ def main():
         for c in failures.get(problem, []):
             md.append("| %s | failed: %s | | | |" % (c["label"], c["reason"]))
         md.append("")
+        parts = [k for k in cases[0] if k.endswith("_error")]
+        if parts:  # the signed errors the headline error is made of
+            md.append("| setting | " + " | ".join(k[:-len("_error")] for k in parts) + " |")
+            md.append("|---" * (len(parts) + 1) + "|")
+            for c in sorted(cases, key=lambda c: c["wall"]):
+                md.append("| %s | " % c["label"] + " | ".join("%+.1f %%" % (100 * c[k]) for k in parts) + " |")
+            md.append("")
         for target in (0.10, 0.05, 0.02, 0.01, 0.005):
             ok = [c for c in cases if c["error"] <= target]
             if ok:
