@@ -6,8 +6,8 @@
 //   H/8: 1.78e-2   H/16: 5.70e-3   H/32: 2.13e-3   H/64: 9.72e-4   H/128: 5.09e-4
 // orders 1.64, 1.42, 1.13, 0.93. The solution is only C1 (gravity starts at once: its
 // curvature jumps), for which the dispersion error of order 2 splines gives h^1.5; below
-// H/32 an error term of order h that no spline order, particle count (3x3, 4x4) or time step
-// (CFL 0.03) changes takes over (docs/accuracy-cost.md). Bounds: the order between H/16 and
+// H/32 an error term of order h that no spline order, particle count (3x3, 4x4: within 2 %)
+// or time step (CFL 0.1, 0.03: within 4 %) changes takes over (docs/validation.md). Bounds: the order between H/16 and
 // H/32 at least 1.25 (measured 1.42, margin 0.17: a first-order method fails it) and the
 // error at H/32 at most 2.5e-3 (measured 2.13e-3 plus 17 %).
 #include <catch2/catch.hpp>
