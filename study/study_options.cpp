@@ -27,6 +27,24 @@ std::vector<std::string> split_values(const std::string& list) {
   return out;
 }
 
+// An axis of tables (no key) takes no bare values: --axis NAME=LABEL,... keeps the values
+// with those labels, in the order given.
+void select_values_by_label(Axis& axis, const std::vector<std::string>& labels) {
+  std::vector<AxisValue> kept;
+  for (const auto& label : labels) {
+    bool found = false;
+    for (const auto& v : axis.values)
+      if (v.label == label) kept.push_back(v), found = true;
+    if (!found) {
+      std::string known;
+      for (const auto& v : axis.values) known += (known.empty() ? "\"" : ", \"") + v.label + "\"";
+      throw UsageError("--axis " + axis.name + ": no value labelled \"" + label +
+                       "\" (an axis of tables is narrowed by its labels: " + known + ")");
+    }
+  }
+  axis.values = std::move(kept);
+}
+
 }  // namespace
 
 void apply_study_options(StudyDescription& study, const std::vector<std::string>& sets,
@@ -41,8 +59,10 @@ void apply_study_options(StudyDescription& study, const std::vector<std::string>
     for (auto& candidate : study.axes)
       if (candidate.name == name) axis = &candidate;
     if (!axis) throw UsageError("--axis " + name + ": the study has no axis \"" + name + "\"");
-    if (axis->key.empty())
-      throw UsageError("--axis " + name + ": the axis sets several keys per value; only an axis with a key takes bare values");
+    if (axis->key.empty()) {
+      select_values_by_label(*axis, split_values(list));
+      continue;
+    }
     axis->values.clear();
     for (const auto& text : split_values(list)) {
       AxisValue v;

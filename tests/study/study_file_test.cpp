@@ -4,8 +4,10 @@
 
 #include <string>
 
+#include "core/error.hpp"
 #include "study/study_cases.hpp"
 #include "study/study_loader.hpp"
+#include "study/study_options.hpp"
 #include "test_support.hpp"
 
 using namespace bsmpm;
@@ -176,4 +178,28 @@ TEST_CASE("an axis value may set nothing (the base scene), the study's own set m
   const SceneError e = study_error(empty_study_set + kAxis);
   CHECK(e.where().line == 4);
   CHECK(e.message() == "sets no scene key");
+}
+
+TEST_CASE("An axis of tables is narrowed by its labels (--axis), an unknown label names those it has", "[study][errors]") {
+  const std::string axis =
+      "[[axes]]\nname = \"setting\"\nvalues = [{ value = 0, label = \"shipped\", set = {} },\n"
+      "  { value = 1, label = \"order 3\", set = { \"grid.order\" = 3 } },\n"
+      "  { value = 2, label = \"FLIP 0.95\", set = { \"solver.flip\" = 0.95 } }]\n";
+  StudyDescription s = load_study_text(kHeader + axis, kPath);
+  const auto all = expand_cases(s, "v1");
+  apply_study_options(s, {}, {"setting=FLIP 0.95,shipped"});
+  REQUIRE(s.axes[0].values.size() == 2);
+  CHECK(s.axes[0].values[0].label == "FLIP 0.95");
+  CHECK(s.axes[0].values[1].label == "shipped");
+  const auto narrowed = expand_cases(s, "v1");
+  REQUIRE(narrowed.size() == 2);
+  CHECK(narrowed[0].key == all[2].key);  // a value chosen by label keeps its case (and its results)
+  CHECK(narrowed[1].key == all[0].key);
+  try {
+    apply_study_options(s, {}, {"setting=APIC"});
+    FAIL("an unknown label was accepted");
+  } catch (const UsageError& e) {
+    CHECK(std::string(e.what()).find("no value labelled \"APIC\"") != std::string::npos);
+    CHECK(std::string(e.what()).find("\"FLIP 0.95\", \"shipped\"") != std::string::npos);
+  }
 }
