@@ -238,8 +238,7 @@ def failure_reason(run):
 
 def summary_of(run):
     with open(os.path.join(run, "summary.json")) as f:
-        s = json.load(f)
-    return s
+        return json.load(f)
 
 
 def column_convergence(cases):

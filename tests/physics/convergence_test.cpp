@@ -13,7 +13,6 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <cstdio>
 
 #include "elastic_column.hpp"
 #include "test_support.hpp"
@@ -29,12 +28,12 @@ struct ColumnError {
 
 // Runs the column at `cells` cells over its height and measures its error against the exact
 // solution at each particle's own reference height.
-ColumnError column_error(int cells, int order, int ppc, const std::vector<std::string>& extra = {}) {
+ColumnError column_error(int cells, int order, int ppc) {
   const double h = 1.0 / cells;
-  std::vector<std::string> overrides = {"grid.cell_size=" + std::to_string(h), "grid.order=" + std::to_string(order),
-                                        "grid.particles_per_cell=" + std::to_string(ppc)};
-  overrides.insert(overrides.end(), extra.begin(), extra.end());
-  const SceneDescription scene = load_scene(test::scene_path("elastic_column.toml"), overrides);
+  const SceneDescription scene =
+      load_scene(test::scene_path("elastic_column.toml"),
+                 {"grid.cell_size=" + std::to_string(h), "grid.order=" + std::to_string(order),
+                  "grid.particles_per_cell=" + std::to_string(ppc)});
   auto sim = build_simulation(scene);
   const test::ElasticColumn exact;
   double err2 = 0.0;
