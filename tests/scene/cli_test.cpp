@@ -59,6 +59,25 @@ TEST_CASE("bsmpm --help, a command's --help and --version print and exit 0", "[c
   CHECK(contains(bare.output, "usage: bsmpm COMMAND"));
 }
 
+TEST_CASE("The version names the source tree's current revision, not the one at configure time", "[cli]") {
+  // A revision read once when CMake configured went stale with every commit: study cases and
+  // resumes would then accept results of other code as this build's. Read at every build, it
+  // is HEAD's, with "-dirty.HASH" exactly when tracked files differ from HEAD.
+  const fs::path head = scratch() / "head.txt", diff = scratch() / "diff.txt";
+  const std::string git = std::string("git -C ") + BSMPM_SOURCE_DIR;
+  if (std::system((git + " rev-parse --short=12 HEAD > " + head.string() + " 2>/dev/null").c_str()) != 0) {
+    CHECK(std::string(kGitRevision) == "unknown");  // not built from a git checkout
+    return;
+  }
+  REQUIRE(std::system((git + " diff HEAD --quiet; echo $? > " + diff.string()).c_str()) == 0);
+  std::string revision = test::read_text(head);
+  revision.erase(revision.find_last_not_of("\n") + 1);
+  const bool dirty = test::read_text(diff).front() == '1';
+  const std::string built = kGitRevision;
+  CHECK(built.substr(0, built.find('-')) == revision);
+  CHECK((built.find("-dirty.") != std::string::npos) == dirty);
+}
+
 TEST_CASE("Usage errors exit 2 with a message naming the problem and write nothing", "[cli]") {
   struct Case {
     std::string args, message;
