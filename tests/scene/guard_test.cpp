@@ -120,6 +120,12 @@ TEST_CASE("The cost prediction matches a short run", "[guards][cost]") {
   // here (measured: 80.6 MiB predicted for 81.6 MiB, ratio 0.99); and the increase from this
   // run to one of 25 times its particles (160,000 at a 1 mm grid, a few steps), the part the
   // particles and the grid take (measured: 62.5 MiB predicted for 67.8 MiB, ratio 0.92).
+#if defined(__SANITIZE_ADDRESS__)
+  // Under AddressSanitizer (scripts/test --sanitize) the resident memory is ASan's (shadow
+  // memory, quarantine, redzones: 1.9 times the prediction measured), not the program's, so
+  // there is no claim to check; the Release suite checks it.
+  return;
+#endif
   const double mib = 1024.0 * 1024.0;
   const double peak = read_run_summary(dir.string()).peak_memory_mb * mib;
   INFO("predicted " << cost.memory_bytes / mib << " MiB, peak resident " << peak / mib << " MiB");
