@@ -82,6 +82,7 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
   // Half the interior D_p of APIC: h^2/4 for quadratic, h^2/3 for cubic B-splines.
   const double interior = P == 2 ? 0.25 : 1.0 / 3.0;
   affine_floor_ = 0.5 * interior * st_.grid.cell_size().cwiseProduct(st_.grid.cell_size());
+  inverse_cell_ = st_.grid.cell_size().cwiseInverse();
   if (settings_.fluid_volume == SolverSettings::FluidVolume::kSmoothed) {
     smoothing_moments_.assign(kMoments * st_.grid.node_count(), 0.0);
     gradient_scratch_.resize(st_.particles.size());
@@ -279,29 +280,40 @@ void BsmpmSimulation<P>::scatter_body(std::size_t b) {
   const int ny = st_.grid.ny();
   auto& ps = st_.particles;
   GridLayer& layer = st_.layers[st_.bodies[b].layer];
-  st_.schedules[b].for_each([&](std::uint32_t p) {
-    const auto& w = st_.weights[p];
+  // Raw pointers, read once: Eigen's vector stores may alias anything, so through the
+  // std::vectors every store would reload every array's address.
+  double* const mass = layer.mass.data();
+  Vec2* const momentum = layer.momentum.data();
+  Vec2* const force = layer.force.data();
+  Vec2* const mass_gradient = layer.mass_gradient.data();
+  double* const volume = layer.volume.data();
+  const double* const gx = greville_x_.data();
+  const double* const gy = greville_y_.data();
+  const ParticleWeights<P>* const weights = st_.weights.data();
+  st_.schedules[b].for_each([&, mass, momentum, force, mass_gradient, volume, gx, gy, weights](std::uint32_t p) {
+    const auto& w = weights[p];
     const double m = ps.mass[p];
     const Vec2 mv = m * ps.v[p];
     const double Vp = ps.volume(p);
     const Mat2 Vsigma = Vp * ps.stress[p];
     const Mat2 mC = m * ps.C[p];
+    const Vec2 xp = ps.x[p];
     for (int a = 0; a <= P; ++a) {
       const int row = (w.i0 + a) * ny + w.j0;
       for (int c = 0; c <= P; ++c) {
         const double s = w.wx[a] * w.wy[c];
         const Vec2 grad(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]);
-        layer.mass[row + c] += m * s;          // eq. 5
+        mass[row + c] += m * s;          // eq. 5
         if constexpr (kAffine) {
           // APIC: the particle's momentum at the control point, m (v_p + C_p (xi_I - x_p)).
-          const Vec2 d(greville_x_[w.i0 + a] - ps.x[p].x(), greville_y_[w.j0 + c] - ps.x[p].y());
-          layer.momentum[row + c] += s * (mv + mC * d);
+          const Vec2 d(gx[w.i0 + a] - xp.x(), gy[w.j0 + c] - xp.y());
+          momentum[row + c] += s * (mv + mC * d);
         } else {
-          layer.momentum[row + c] += s * mv;   // eq. 6 (numerator)
+          momentum[row + c] += s * mv;   // eq. 6 (numerator)
         }
-        layer.force[row + c] -= Vsigma * grad; // eq. 7
-        if constexpr (kMassGradient) layer.mass_gradient[row + c] += m * grad;  // contact normals
-        if constexpr (kVolume) layer.volume[row + c] += s * Vp;
+        force[row + c] -= Vsigma * grad; // eq. 7
+        if constexpr (kMassGradient) mass_gradient[row + c] += m * grad;  // contact normals
+        if constexpr (kVolume) volume[row + c] += s * Vp;
       }
     }
   });
@@ -351,7 +363,7 @@ inline bool keep_inside(Vec2& x, const Vec2& lo, const Vec2& hi) {
 
 // Adds S_Ip q to the particle's control points of `field`.
 template <int P>
-inline void scatter(const ParticleWeights<P>& w, const Vec2& q, std::vector<Vec2>& field, int ny) {
+inline void scatter(const ParticleWeights<P>& w, const Vec2& q, Vec2* field, int ny) {
   for (int a = 0; a <= P; ++a) {
     const int row = (w.i0 + a) * ny + w.j0;
     for (int c = 0; c <= P; ++c) field[row + c] += (w.wx[a] * w.wy[c]) * q;
@@ -361,8 +373,7 @@ inline void scatter(const ParticleWeights<P>& w, const Vec2& q, std::vector<Vec2
 // Adds S_Ip (m v_p + m C_p (xi_I - x_p)) to the particle's control points of `field`.
 template <int P>
 inline void scatter_affine(const ParticleWeights<P>& w, const Vec2& mv, const Mat2& mC, const Vec2& x,
-                           const std::vector<double>& gx, const std::vector<double>& gy, std::vector<Vec2>& field,
-                           int ny) {
+                           const double* gx, const double* gy, Vec2* field, int ny) {
   for (int a = 0; a <= P; ++a) {
     const int row = (w.i0 + a) * ny + w.j0;
     const Vec2 at_column = mv + (gx[w.i0 + a] - x.x()) * mC.col(0);
@@ -371,7 +382,9 @@ inline void scatter_affine(const ParticleWeights<P>& w, const Vec2& mv, const Ma
   }
 }
 
-// The APIC affine velocity C_p = B_p D_p^-1 (Jiang et al. 2015, eq. 10) about the control
+// The grid velocity v_I^{k+1} and its increment at the particle (as gather_velocity()) and
+// the APIC affine velocity C_p, in one walk over the particle's control points.
+// C_p = B_p D_p^-1 (Jiang et al. 2015, eq. 10) about the control
 // points' Greville abscissae, B_p = sum S_Ip v_I (xi_I - x_p)^T, D_p = sum S_Ip (xi_I - x_p)(xi_I - x_p)^T.
 // B-splines reproduce linear functions with the Greville points (sum S_Ip xi_I = x_p), which
 // is what makes the transfer exact for affine velocity fields and conserve momentum. Next
@@ -384,13 +397,16 @@ inline void scatter_affine(const ParticleWeights<P>& w, const Vec2& mv, const Ma
 // D_p is diagonal, D_xx = sum_a N_a (xi_a - x)^2 and D_yy = sum_c N_c (eta_c - y)^2: it is
 // evaluated per axis, and B_p through the row sums of the velocities.
 template <int P>
-inline Mat2 affine_velocity(const ParticleWeights<P>& w, const std::vector<Vec2>& v, int ny, const Vec2& x,
-                            const std::vector<double>& gx, const std::vector<double>& gy, const Vec2& floor) {
+inline Mat2 gather_velocity_and_affine(const ParticleWeights<P>& w, const GridLayer& layer, int ny, const Vec2& x,
+                                       const std::vector<double>& gx, const std::vector<double>& gy,
+                                       const Vec2& floor, GridVelocityAt& g) {
+  g = gather_velocity<P>(w, layer, ny);
   Mat2 B = Mat2::Zero();
   if constexpr (P == 1) {
     for (int a = 0; a <= P; ++a) {
       const int row = (w.i0 + a) * ny + w.j0;
-      for (int c = 0; c <= P; ++c) B += v[row + c] * Vec2(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]).transpose();
+      for (int c = 0; c <= P; ++c)
+        B += layer.velocity[row + c] * Vec2(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]).transpose();
     }
     return B;
   } else {
@@ -406,8 +422,8 @@ inline Mat2 affine_velocity(const ParticleWeights<P>& w, const std::vector<Vec2>
       Dxx += w.wx[a] * dx * dx;
       Vec2 along = Vec2::Zero(), across = Vec2::Zero();  // sum_c N_c v, sum_c N_c v dy
       for (int c = 0; c <= P; ++c) {
-        along += w.wy[c] * v[row + c];
-        across += (w.wy[c] * dy[c]) * v[row + c];
+        along += w.wy[c] * layer.velocity[row + c];
+        across += (w.wy[c] * dy[c]) * layer.velocity[row + c];
       }
       B.col(0) += (w.wx[a] * dx) * along;
       B.col(1) += w.wx[a] * across;
@@ -463,18 +479,21 @@ void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
     GridLayer& layer = st_.layers[body.layer];
     const RigidBody* rigid = std::get_if<RigidBody>(&body.material);
     const bool shift = layer.tracks_volume && is_fluid(body.material);
+    Vec2* const remap = layer.remap_velocity.data();  // read once (see scatter_body)
     long body_clamped = 0;
-    st_.schedules[b].for_each([&](std::uint32_t p) {
+    st_.schedules[b].for_each([&, remap](std::uint32_t p) {
       const auto& w = st_.weights[p];
-      const GridVelocityAt grid = gather_velocity<P>(w, layer, ny);
-      Vec2 v, v_new = grid.velocity;
+      GridVelocityAt grid;
       Mat2 C = Mat2::Zero();
+      if (kAffine && !rigid)
+        C = gather_velocity_and_affine<P>(w, layer, ny, ps.x[p], greville_x_, greville_y_, affine_floor_, grid);
+      else grid = gather_velocity<P>(w, layer, ny);
+      Vec2 v, v_new = grid.velocity;
       if (rigid) {
         v = rigid->velocity;
         v_new = v;
       } else if constexpr (kAffine) {
         v = flip * (ps.v[p] + grid.increment) + (1.0 - flip) * v_new;
-        C = affine_velocity<P>(w, layer.velocity, ny, ps.x[p], greville_x_, greville_y_, affine_floor_);
       } else {
         v = flip * (ps.v[p] + grid.increment) + (1.0 - flip) * v_new;  // eq. 11 (flip = 1: paper)
       }
@@ -496,10 +515,10 @@ void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
       ps.x[p] = x;
       if constexpr (kAffine) {
         ps.C[p] = C;
-        scatter_affine<P>(w, ps.mass[p] * v, ps.mass[p] * C, x_old, greville_x_, greville_y_, layer.remap_velocity,
-                          ny);  // eq. 13 with the affine field
+        scatter_affine<P>(w, ps.mass[p] * v, ps.mass[p] * C, x_old, greville_x_.data(), greville_y_.data(),
+                          remap, ny);  // eq. 13 with the affine field
       } else {
-        scatter<P>(w, ps.mass[p] * v, layer.remap_velocity, ny);      // eq. 13
+        scatter<P>(w, ps.mass[p] * v, remap, ny);      // eq. 13
       }
     });
     clamped += body_clamped;
@@ -568,15 +587,17 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
 #pragma omp parallel for schedule(static)
     for (long p = body.begin; p < body.end; ++p) ps.J[p] *= 1.0 + increment_scratch_[p];
   } else if (smooth) {
-    // Volume change from the velocity gradient, then J projected onto the control points and
-    // back before it enters the equation of state.
-#pragma omp parallel for schedule(static)
-    for (long p = body.begin; p < body.end; ++p) {
+    // One pass in the scatter's order: the velocity gradient, the volume change (eq. 14) and
+    // the particle's share of the least-squares moments; then the fit at the control points.
+    // The pass below reads the fitted J back before it enters the equation of state.
+    const PhaseScope timed(st_.timer, StepPhase::kSmoothing);
+    st_.schedules[body.index].for_each([&](std::uint32_t p) {
       const Mat2 L = velocity_gradient<P>(st_.weights[p], body.velocity, ny);
       gradient_scratch_[p] = L;
       ps.J[p] *= (Mat2::Identity() + dt * L).determinant();
-    }
-    smooth_volume_ratio(body.index);
+      add_volume_moments(p);
+    });
+    fit_volume_ratio(body.index);
   }
   auto run = [&](auto viscous) {
 #pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
@@ -585,7 +606,8 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
       double J;
       if (smooth) {
         L = gradient_scratch_[p];
-        J = ps.J[p];
+        J = settings_.fluid_volume == SolverSettings::FluidVolume::kSmoothed ? fitted_volume_ratio(p) : ps.J[p];
+        ps.J[p] = J;
       } else {
         L = velocity_gradient<P>(st_.weights[p], body.velocity, ny);
         J = ps.J[p] * (Mat2::Identity() + dt * L).determinant();
@@ -602,6 +624,7 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
   // Viscosity only when mu > 0: the inviscid loop has no deviatoric term at all.
   if (mat.viscosity > 0.0) run(std::true_type{});
   else run(std::false_type{});
+  if (settings_.fluid_volume == SolverSettings::FluidVolume::kSmoothed) clear_volume_moments(body.index);
   return {body_speed, body_invalid};
 }
 
@@ -665,7 +688,8 @@ void BsmpmSimulation<P>::throw_instability() const {
                               "step (time.cfl or time.dt)", st_.step, st_.time));
 }
 
-// Smoothing of the fluid's volume ratio through the grid (solver.fluid_volume = "smoothed"):
+// Smoothing of the fluid's volume ratio through the grid (solver.fluid_volume = "smoothed"),
+// in the velocity-gradient pass of update_body (moments), fit_volume_ratio and the stress pass:
 // at each control point a mass-weighted least-squares linear fit of the particles' J around
 // its Greville point, J ~ J_I + g_I . (x - xi_I), then J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)).
 // It removes the particle-to-particle pressure noise of weakly compressible MPM. A plain
@@ -676,42 +700,42 @@ void BsmpmSimulation<P>::throw_instability() const {
 // The offsets x_p - xi_I use the particles' new positions x^{k+1}, where their J now sits;
 // the step's weights S_Ip(x^k) only localise the fit, which stays exact for linear fields.
 template <int P>
-void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
-  const PhaseScope timed(st_.timer, StepPhase::kSmoothing);
+void BsmpmSimulation<P>::add_volume_moments(std::uint32_t p) {
   const int ny = st_.grid.ny();
-  const double ihx = 1.0 / st_.grid.cell_size().x(), ihy = 1.0 / st_.grid.cell_size().y();
-  const std::vector<double>& gx = greville_x_;
-  const std::vector<double>& gy = greville_y_;
-  auto& ps = st_.particles;
+  const double ihx = inverse_cell_.x(), ihy = inverse_cell_.y();
+  double* const moments = smoothing_moments_.data();
+  const auto& ps = st_.particles;
+  const auto& w = st_.weights[p];
   // Moments per control point, with d = (x_p - xi_I) / h:
   // sum m S, sum m S d (2), sum m S d d^T (3), sum m S J, sum m S J d (2).
-  st_.schedules[body_index].for_each([&](std::uint32_t p) {
-    const auto& w = st_.weights[p];
-    const double m = ps.mass[p], J = ps.J[p];
-    for (int a = 0; a <= P; ++a) {
-      const int i = w.i0 + a;
-      const double dx = (ps.x[p].x() - gx[i]) * ihx;
-      for (int c = 0; c <= P; ++c) {
-        const int j = w.j0 + c;
-        const double dy = (ps.x[p].y() - gy[j]) * ihy;
-        const double ms = m * w.wx[a] * w.wy[c];
-        double* mom = &smoothing_moments_[kMoments * (i * ny + j)];
-        mom[0] += ms;
-        mom[1] += ms * dx;
-        mom[2] += ms * dy;
-        mom[3] += ms * dx * dx;
-        mom[4] += ms * dx * dy;
-        mom[5] += ms * dy * dy;
-        mom[6] += ms * J;
-        mom[7] += ms * J * dx;
-        mom[8] += ms * J * dy;
-      }
+  const double m = ps.mass[p], J = ps.J[p];
+  for (int a = 0; a <= P; ++a) {
+    const int i = w.i0 + a;
+    const double dx = (ps.x[p].x() - greville_x_[i]) * ihx;
+    for (int c = 0; c <= P; ++c) {
+      const int j = w.j0 + c;
+      const double dy = (ps.x[p].y() - greville_y_[j]) * ihy;
+      const double ms = m * w.wx[a] * w.wy[c];
+      double* mom = moments + kMoments * (i * ny + j);
+      mom[0] += ms;
+      mom[1] += ms * dx;
+      mom[2] += ms * dy;
+      mom[3] += ms * dx * dx;
+      mom[4] += ms * dx * dy;
+      mom[5] += ms * dy * dy;
+      mom[6] += ms * J;
+      mom[7] += ms * J * dx;
+      mom[8] += ms * J * dy;
     }
-  });
-  const Body& body = st_.bodies[body_index];
-  const NodeBox b = st_.layers[body.layer].active;
-  // Each control point's normal equations A (J_I, g_I h) = r, solved by cofactors; the fit
-  // replaces the first three moments.
+  }
+}
+
+// Each control point's normal equations A (J_I, g_I h) = r, solved by cofactors; the fit
+// replaces the first three moments.
+template <int P>
+void BsmpmSimulation<P>::fit_volume_ratio(std::size_t body_index) {
+  const int ny = st_.grid.ny();
+  const NodeBox b = st_.layers[st_.bodies[body_index].layer].active;
 #pragma omp parallel for schedule(static)
   for (int i = b.i0; i < b.i1; ++i)
     for (int j = b.j0; j < b.j1; ++j) {
@@ -737,23 +761,33 @@ void BsmpmSimulation<P>::smooth_volume_ratio(std::size_t body_index) {
       mom[1] = fit1;
       mom[2] = fit2;
     }
-  const long begin = static_cast<long>(body.begin), end = static_cast<long>(body.end);
-#pragma omp parallel for schedule(static)
-  for (long p = begin; p < end; ++p) {
-    const auto& w = st_.weights[p];
-    double J = 0.0;
-    for (int a = 0; a <= P; ++a) {
-      const int i = w.i0 + a;
-      const double dx = (ps.x[p].x() - gx[i]) * ihx;
-      for (int c = 0; c <= P; ++c) {
-        const int j = w.j0 + c;
-        const double dy = (ps.x[p].y() - gy[j]) * ihy;
-        const double* fit = &smoothing_moments_[kMoments * (i * ny + j)];
-        J += w.wx[a] * w.wy[c] * (fit[0] + fit[1] * dx + fit[2] * dy);
-      }
+}
+
+// J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)) from the fitted control points.
+template <int P>
+double BsmpmSimulation<P>::fitted_volume_ratio(std::size_t p) const {
+  const int ny = st_.grid.ny();
+  const double ihx = inverse_cell_.x(), ihy = inverse_cell_.y();
+  const auto& ps = st_.particles;
+  const auto& w = st_.weights[p];
+  double J = 0.0;
+  for (int a = 0; a <= P; ++a) {
+    const int i = w.i0 + a;
+    const double dx = (ps.x[p].x() - greville_x_[i]) * ihx;
+    for (int c = 0; c <= P; ++c) {
+      const int j = w.j0 + c;
+      const double dy = (ps.x[p].y() - greville_y_[j]) * ihy;
+      const double* fit = &smoothing_moments_[kMoments * (i * ny + j)];
+      J += w.wx[a] * w.wy[c] * (fit[0] + fit[1] * dx + fit[2] * dy);
     }
-    ps.J[p] = J;
   }
+  return J;
+}
+
+template <int P>
+void BsmpmSimulation<P>::clear_volume_moments(std::size_t body_index) {
+  const int ny = st_.grid.ny();
+  const NodeBox b = st_.layers[st_.bodies[body_index].layer].active;
   for (int i = b.i0; i < b.i1; ++i)
     std::fill_n(smoothing_moments_.begin() + kMoments * (i * ny + b.j0), kMoments * (b.j1 - b.j0), 0.0);
 }

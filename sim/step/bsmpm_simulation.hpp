@@ -68,7 +68,11 @@ class BsmpmSimulation final : public Simulation {
   DeformationUpdate update_body(const BodyParticles& body, const RigidBody& rigid, double dt);
   [[noreturn]] void throw_instability() const;
   bool density_in_range(double J) const { return J >= j_min_ && J <= j_max_; }
-  void smooth_volume_ratio(std::size_t body_index);
+  // Least-squares smoothing of the fluid's J through the control points (see the .cpp).
+  void add_volume_moments(std::uint32_t p);
+  void fit_volume_ratio(std::size_t body_index);
+  double fitted_volume_ratio(std::size_t p) const;
+  void clear_volume_moments(std::size_t body_index);
   void clear_grid();
   void constrain(VelocityPhase phase);
 
@@ -81,6 +85,7 @@ class BsmpmSimulation final : public Simulation {
   std::vector<double> smoothing_moments_;  // per control point, only with FluidVolume::kSmoothed
   std::vector<double> greville_x_, greville_y_;
   Vec2 affine_floor_ = Vec2::Zero();        // APIC: floor of D_p's diagonal [m2]
+  Vec2 inverse_cell_ = Vec2::Zero();        // 1 / h per axis
   std::vector<double> inverse_integral_x_, inverse_integral_y_;  // 1 / integral of N_i (particle shifting)
   std::vector<Mat2> gradient_scratch_;
   std::vector<std::uint32_t> sort_key_, sort_order_, sort_start_;  // sort_particles_by_cell()

@@ -23,7 +23,8 @@ enum class StepPhase : int {
   kGridUpdate,      // nodal velocities (eqs. 9-10) and the remapped velocities (eq. 13)
   kGridToParticle,  // G2P, positions and the momentum remap in one pass (eqs. 11-13)
   kStress,          // velocity gradient, deformation and constitutive update (eq. 14)
-  kSmoothing,       // the fluid volume ratio fitted through the grid
+  kSmoothing,       // the fluid volume ratio fitted through the grid; for such a fluid, its
+                    // pass takes the velocity gradient and J too (one walk over the particles)
   kClearGrid,       // the touched control points zeroed for the next step
   kProbes,          // probe sampling after the step
   kCount
