@@ -700,34 +700,40 @@ void BsmpmSimulation<P>::throw_instability() const {
 // The offsets x_p - xi_I use the particles' new positions x^{k+1}, where their J now sits;
 // the step's weights S_Ip(x^k) only localise the fit, which stays exact for linear fields.
 template <int P>
-void BsmpmSimulation<P>::add_volume_moments(std::uint32_t p) {
+template <class F>
+void BsmpmSimulation<P>::for_each_fit_offset(std::size_t p, F&& f) const {
   const int ny = st_.grid.ny();
-  const double ihx = inverse_cell_.x(), ihy = inverse_cell_.y();
-  double* const moments = smoothing_moments_.data();
-  const auto& ps = st_.particles;
+  const Vec2& x = st_.particles.x[p];
   const auto& w = st_.weights[p];
-  // Moments per control point, with d = (x_p - xi_I) / h:
-  // sum m S, sum m S d (2), sum m S d d^T (3), sum m S J, sum m S J d (2).
-  const double m = ps.mass[p], J = ps.J[p];
   for (int a = 0; a <= P; ++a) {
     const int i = w.i0 + a;
-    const double dx = (ps.x[p].x() - greville_x_[i]) * ihx;
+    const double dx = (x.x() - greville_x_[i]) * inverse_cell_.x();
     for (int c = 0; c <= P; ++c) {
       const int j = w.j0 + c;
-      const double dy = (ps.x[p].y() - greville_y_[j]) * ihy;
-      const double ms = m * w.wx[a] * w.wy[c];
-      double* mom = moments + kMoments * (i * ny + j);
-      mom[0] += ms;
-      mom[1] += ms * dx;
-      mom[2] += ms * dy;
-      mom[3] += ms * dx * dx;
-      mom[4] += ms * dx * dy;
-      mom[5] += ms * dy * dy;
-      mom[6] += ms * J;
-      mom[7] += ms * J * dx;
-      mom[8] += ms * J * dy;
+      f(i * ny + j, w.wx[a], w.wy[c], dx, (x.y() - greville_y_[j]) * inverse_cell_.y());
     }
   }
+}
+
+// Moments per control point, with d = (x_p - xi_I) / h:
+// sum m S, sum m S d (2), sum m S d d^T (3), sum m S J, sum m S J d (2).
+template <int P>
+void BsmpmSimulation<P>::add_volume_moments(std::uint32_t p) {
+  double* const moments = smoothing_moments_.data();
+  const double m = st_.particles.mass[p], J = st_.particles.J[p];
+  for_each_fit_offset(p, [&](int node, double wx, double wy, double dx, double dy) {
+    const double ms = m * wx * wy;
+    double* mom = moments + kMoments * node;
+    mom[0] += ms;
+    mom[1] += ms * dx;
+    mom[2] += ms * dy;
+    mom[3] += ms * dx * dx;
+    mom[4] += ms * dx * dy;
+    mom[5] += ms * dy * dy;
+    mom[6] += ms * J;
+    mom[7] += ms * J * dx;
+    mom[8] += ms * J * dy;
+  });
 }
 
 // Each control point's normal equations A (J_I, g_I h) = r, solved by cofactors; the fit
@@ -766,21 +772,11 @@ void BsmpmSimulation<P>::fit_volume_ratio(std::size_t body_index) {
 // J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)) from the fitted control points.
 template <int P>
 double BsmpmSimulation<P>::fitted_volume_ratio(std::size_t p) const {
-  const int ny = st_.grid.ny();
-  const double ihx = inverse_cell_.x(), ihy = inverse_cell_.y();
-  const auto& ps = st_.particles;
-  const auto& w = st_.weights[p];
   double J = 0.0;
-  for (int a = 0; a <= P; ++a) {
-    const int i = w.i0 + a;
-    const double dx = (ps.x[p].x() - greville_x_[i]) * ihx;
-    for (int c = 0; c <= P; ++c) {
-      const int j = w.j0 + c;
-      const double dy = (ps.x[p].y() - greville_y_[j]) * ihy;
-      const double* fit = &smoothing_moments_[kMoments * (i * ny + j)];
-      J += w.wx[a] * w.wy[c] * (fit[0] + fit[1] * dx + fit[2] * dy);
-    }
-  }
+  for_each_fit_offset(p, [&](int node, double wx, double wy, double dx, double dy) {
+    const double* fit = &smoothing_moments_[kMoments * node];
+    J += wx * wy * (fit[0] + fit[1] * dx + fit[2] * dy);
+  });
   return J;
 }
 
