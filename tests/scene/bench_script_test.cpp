@@ -2,6 +2,7 @@
 // `bsmpm bench --json`, given as two files or as one file and a fresh run of the same case.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -88,4 +89,26 @@ TEST_CASE("scripts/bench --compare OLD.json runs OLD's case again", "[cli][bench
   CHECK(r.output.find("differ") == std::string::npos);
   CHECK(!line_of(r.output, "particle_to_grid").empty());
   CHECK(!line_of(r.output, "total").empty());
+}
+
+TEST_CASE("scripts/bench --smoothing-cost adds the smoothing's share of the step, from a run without it",
+          "[cli][bench]") {
+  const auto r = bench_script("--no-reference --threads 1 --steps 2 --smoothing-cost " +
+                              test::scene_path("hydrostatic_tank.toml"));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  std::istringstream lines(r.output);
+  std::string header, row;
+  std::getline(lines, header);
+  std::getline(lines, row);
+  CHECK(header.substr(header.find_last_not_of(' ') - 10, 11) == "smoothing_%");
+  // scene, cell_mm, threads, particles, ms_per_step, particle_st/s, smoothing_%
+  std::istringstream words(row);
+  std::string scene;
+  double cell = 0, threads = 0, particles = 0, ms = 0, rate = 0, share = std::nan("");
+  words >> scene >> cell >> threads >> particles >> ms >> rate >> share;
+  CHECK(scene == "hydrostatic_tank");
+  CHECK(particles == 6400);
+  CHECK(std::isfinite(share));  // a percentage of a timing: its value is this machine's business
+  CHECK(share < 100.0);
 }
