@@ -572,6 +572,7 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
   double body_speed = 0.0;
   bool body_invalid = false;
   const bool smooth = settings_.fluid_volume != SolverSettings::FluidVolume::kParticle;
+  const bool fitted = settings_.fluid_volume == SolverSettings::FluidVolume::kSmoothed;
   if (settings_.fluid_volume == SolverSettings::FluidVolume::kProjected) {
     // The volumetric increment of each particle, projected onto the lower splines (F-bar).
 #pragma omp parallel for schedule(static)
@@ -586,7 +587,7 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
     }
 #pragma omp parallel for schedule(static)
     for (long p = body.begin; p < body.end; ++p) ps.J[p] *= 1.0 + increment_scratch_[p];
-  } else if (smooth) {
+  } else if (fitted) {
     // One pass in the scatter's order: the velocity gradient, the volume change (eq. 14) and
     // the particle's share of the least-squares moments; then the fit at the control points.
     // The pass below reads the fitted J back before it enters the equation of state.
@@ -606,7 +607,7 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
       double J;
       if (smooth) {
         L = gradient_scratch_[p];
-        J = settings_.fluid_volume == SolverSettings::FluidVolume::kSmoothed ? fitted_volume_ratio(p) : ps.J[p];
+        J = fitted ? fitted_volume_ratio(p) : ps.J[p];
         ps.J[p] = J;
       } else {
         L = velocity_gradient<P>(st_.weights[p], body.velocity, ny);
@@ -624,7 +625,7 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
   // Viscosity only when mu > 0: the inviscid loop has no deviatoric term at all.
   if (mat.viscosity > 0.0) run(std::true_type{});
   else run(std::false_type{});
-  if (settings_.fluid_volume == SolverSettings::FluidVolume::kSmoothed) clear_volume_moments(body.index);
+  if (fitted) clear_volume_moments(body.index);
   return {body_speed, body_invalid};
 }
 
