@@ -75,6 +75,8 @@ const std::vector<BadCase> kCases = {
      "bodies[0].shape.max", "must exceed min"},
     {"duplicate body", {{0, "[[bodies]]\nname = \"water\"\nmaterial = \"water\"\nshape = { type = \"disk\", center = [0.3, 0.1], radius = 0.02 }"}},
      25, 8, "bodies[1].name", "already exists"},
+    {"negative skin friction", {{3, "max = [0.4, 0.2]\nwalls = { skin_friction = -0.01 }"}}, 4, 27,
+     "domain.walls.skin_friction", "must be >= 0 \\(got -0.01\\)"},
     {"probe on no wall", {{22, "wall = \"front\""}}, 22, 8, "probes[0].wall", "must be \"left\", \"right\", \"bottom\" or \"top\""},
     {"probe off the wall", {{23, "position = 0.5"}}, 23, 12, "probes[0].position", "must be in \\[0, 0.2\\]"},
     {"probe file name", {{20, "name = \"a/b\""}}, 20, 8, "probes[0].name", "letters, digits"},
