@@ -99,16 +99,17 @@ class TankWalls final : public EffectBase<TankWalls<P>, P> {
       auto hold = [&](int n, int side, int axis, double outward, int k) {
         const Vec2 before = v[n];
         apply(v[n], side, axis, outward, held[side][k], update);
-        if (shear > 0.0 && kinds_[side] == WallKind::kSlip && layer.mass[n] > st.mass_cutoff) {
+        const double m = layer.mass[n];
+        if (!(m > st.mass_cutoff)) return;  // a node this light carries no velocity
+        if (shear > 0.0 && kinds_[side] == WallKind::kSlip) {
           // docs/method.md §3, eq. W1: m_I dv_t/dt = -rho0 C_f |v_t| v_t L_I, with L_I the
           // integral of the control point's basis along the wall; integrated exactly over
           // the step, so it slows v_t and never reverses it.
           const double length = axis == 0 ? st.grid.by.integral(k) : st.grid.bx.integral(k);
           double& vt = v[n][1 - axis];
-          vt /= 1.0 + shear * length / layer.mass[n] * std::abs(vt);
+          vt /= 1.0 + shear * length / m * std::abs(vt);
         }
-        if (!record || !(layer.mass[n] > st.mass_cutoff)) return;
-        const double m = layer.mass[n];
+        if (!record) return;
         impulse[side][k] += m * (v[n] - before);
         st.diagnostics.work.walls += 0.5 * m * (v[n].squaredNorm() - before.squaredNorm());
       };
