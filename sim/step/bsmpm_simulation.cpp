@@ -298,21 +298,26 @@ void BsmpmSimulation<P>::scatter_body(std::size_t b) {
     const Mat2 Vsigma = Vp * ps.stress[p];
     const Mat2 mC = m * ps.C[p];
     const Vec2 xp = ps.x[p];
+    // S_Ip = N_a N_c and grad S_Ip = (N_a' N_c, N_a N_c'): the column's factors first.
+    std::array<double, P + 1> dy;
+    if constexpr (kAffine)
+      for (int c = 0; c <= P; ++c) dy[c] = gy[w.j0 + c] - xp.y();
     for (int a = 0; a <= P; ++a) {
       const int row = (w.i0 + a) * ny + w.j0;
+      const double wx = w.wx[a], mx = m * wx;
+      const Vec2 force_x = w.gx[a] * Vsigma.col(0), force_y = wx * Vsigma.col(1);  // Vsigma grad S = N_c force_x + N_c' force_y
+      Vec2 at_column = mv;  // APIC: m (v_p + C_p (xi_I - x_p)) = at_column + dy mC.col(1)
+      if constexpr (kAffine) at_column += (gx[w.i0 + a] - xp.x()) * mC.col(0);
       for (int c = 0; c <= P; ++c) {
-        const double s = w.wx[a] * w.wy[c];
-        const Vec2 grad(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]);
-        mass[row + c] += m * s;          // eq. 5
+        const double s = wx * w.wy[c];
+        mass[row + c] += mx * w.wy[c];   // eq. 5
         if constexpr (kAffine) {
-          // APIC: the particle's momentum at the control point, m (v_p + C_p (xi_I - x_p)).
-          const Vec2 d(gx[w.i0 + a] - xp.x(), gy[w.j0 + c] - xp.y());
-          momentum[row + c] += s * (mv + mC * d);
+          momentum[row + c] += s * (at_column + dy[c] * mC.col(1));
         } else {
           momentum[row + c] += s * mv;   // eq. 6 (numerator)
         }
-        force[row + c] -= Vsigma * grad; // eq. 7
-        if constexpr (kMassGradient) mass_gradient[row + c] += m * grad;  // contact normals
+        force[row + c] -= w.wy[c] * force_x + w.gy[c] * force_y;  // eq. 7
+        if constexpr (kMassGradient) mass_gradient[row + c] += m * Vec2(w.gx[a] * w.wy[c], wx * w.gy[c]);  // contact normals
         if constexpr (kVolume) volume[row + c] += s * Vp;
       }
     }
@@ -400,9 +405,9 @@ template <int P>
 inline Mat2 gather_velocity_and_affine(const ParticleWeights<P>& w, const GridLayer& layer, int ny, const Vec2& x,
                                        const std::vector<double>& gx, const std::vector<double>& gy,
                                        const Vec2& floor, GridVelocityAt& g) {
-  g = gather_velocity<P>(w, layer, ny);
-  Mat2 B = Mat2::Zero();
   if constexpr (P == 1) {
+    g = gather_velocity<P>(w, layer, ny);
+    Mat2 B = Mat2::Zero();
     for (int a = 0; a <= P; ++a) {
       const int row = (w.i0 + a) * ny + w.j0;
       for (int c = 0; c <= P; ++c)
@@ -410,26 +415,38 @@ inline Mat2 gather_velocity_and_affine(const ParticleWeights<P>& w, const GridLa
     }
     return B;
   } else {
-    std::array<double, P + 1> dy;
+    // Per column a, the sums over c, then over a: S_Ip = N_a N_c factors every sum.
+    std::array<double, P + 1> wdy;
     double Dyy = 0.0, Dxx = 0.0;
     for (int c = 0; c <= P; ++c) {
-      dy[c] = gy[w.j0 + c] - x.y();
-      Dyy += w.wy[c] * dy[c] * dy[c];
+      const double dy = gy[w.j0 + c] - x.y();
+      wdy[c] = w.wy[c] * dy;
+      Dyy += wdy[c] * dy;
     }
+    Vec2 velocity = Vec2::Zero(), increment = Vec2::Zero(), col0 = Vec2::Zero(), col1 = Vec2::Zero();
+    const Vec2* const v = layer.velocity.data();
+    const Vec2* const dv = layer.velocity_increment.data();
     for (int a = 0; a <= P; ++a) {
       const int row = (w.i0 + a) * ny + w.j0;
       const double dx = gx[w.i0 + a] - x.x();
       Dxx += w.wx[a] * dx * dx;
-      Vec2 along = Vec2::Zero(), across = Vec2::Zero();  // sum_c N_c v, sum_c N_c v dy
+      // sum_c N_c v, sum_c N_c dv, sum_c N_c dy v
+      Vec2 along = Vec2::Zero(), along_increment = Vec2::Zero(), across = Vec2::Zero();
       for (int c = 0; c <= P; ++c) {
-        along += w.wy[c] * layer.velocity[row + c];
-        across += (w.wy[c] * dy[c]) * layer.velocity[row + c];
+        along += w.wy[c] * v[row + c];
+        along_increment += w.wy[c] * dv[row + c];
+        across += wdy[c] * v[row + c];
       }
-      B.col(0) += (w.wx[a] * dx) * along;
-      B.col(1) += w.wx[a] * across;
+      velocity += w.wx[a] * along;
+      increment += w.wx[a] * along_increment;
+      col0 += (w.wx[a] * dx) * along;
+      col1 += w.wx[a] * across;
     }
-    B.col(0) /= std::max(Dxx, floor.x());
-    B.col(1) /= std::max(Dyy, floor.y());
+    g.velocity = velocity;
+    g.increment = increment;
+    Mat2 B;
+    B.col(0) = col0 / std::max(Dxx, floor.x());
+    B.col(1) = col1 / std::max(Dyy, floor.y());
     return B;
   }
 }
@@ -442,15 +459,24 @@ inline Mat2 gather_velocity_and_affine(const ParticleWeights<P>& w, const GridLa
 template <int P>
 inline Vec2 shift_of(const ParticleWeights<P>& w, const std::vector<double>& volume, int ny,
                      const std::vector<double>& inv_ix, const std::vector<double>& inv_iy, double D) {
+  // phi_I = V_I / (int N_i int N_j) factors per axis: the sums over c first, then over a.
+  std::array<double, P + 1> wy, gy;
+  for (int c = 0; c <= P; ++c) {
+    wy[c] = w.wy[c] * inv_iy[w.j0 + c];
+    gy[c] = w.gy[c] * inv_iy[w.j0 + c];
+  }
   double phi = 0.0;
   Vec2 grad = Vec2::Zero();
   for (int a = 0; a <= P; ++a) {
-    const int row = (w.i0 + a) * ny + w.j0;
+    const double* const V = volume.data() + (w.i0 + a) * ny + w.j0;
+    double along = 0.0, across = 0.0;  // sum_c N_c V / int N_j, sum_c N_c' V / int N_j
     for (int c = 0; c <= P; ++c) {
-      const double f = volume[row + c] * inv_ix[w.i0 + a] * inv_iy[w.j0 + c];
-      phi += w.wx[a] * w.wy[c] * f;
-      grad += f * Vec2(w.gx[a] * w.wy[c], w.wx[a] * w.gy[c]);
+      along += wy[c] * V[c];
+      across += gy[c] * V[c];
     }
+    const double ix = inv_ix[w.i0 + a];
+    phi += w.wx[a] * ix * along;
+    grad += ix * Vec2(w.gx[a] * along, w.wx[a] * across);
   }
   if (phi < 0.95) return Vec2::Zero();
   return -D * grad;
@@ -700,41 +726,41 @@ void BsmpmSimulation<P>::throw_instability() const {
 // control point do not span a plane (a thin film), the fit falls back to the mass average.
 // The offsets x_p - xi_I use the particles' new positions x^{k+1}, where their J now sits;
 // the step's weights S_Ip(x^k) only localise the fit, which stays exact for linear fields.
-template <int P>
-template <class F>
-void BsmpmSimulation<P>::for_each_fit_offset(std::size_t p, F&& f) const {
-  const int ny = st_.grid.ny();
-  const Vec2& x = st_.particles.x[p];
-  const auto& w = st_.weights[p];
-  for (int a = 0; a <= P; ++a) {
-    const int i = w.i0 + a;
-    const double dx = (x.x() - greville_x_[i]) * inverse_cell_.x();
-    for (int c = 0; c <= P; ++c) {
-      const int j = w.j0 + c;
-      f(i * ny + j, w.wx[a], w.wy[c], dx, (x.y() - greville_y_[j]) * inverse_cell_.y());
-    }
-  }
-}
-
 // Moments per control point, with d = (x_p - xi_I) / h:
 // sum m S, sum m S d (2), sum m S d d^T (3), sum m S J, sum m S J d (2).
+// S_Ip = N_a(x) N_c(y) and d = (dx_a, dy_c): every moment is a product of one factor per
+// axis, N_a {1, dx_a, dx_a^2} times N_c {1, dy_c, dy_c^2}, formed once per particle.
 template <int P>
 void BsmpmSimulation<P>::add_volume_moments(std::uint32_t p) {
   double* const moments = smoothing_moments_.data();
-  const double m = st_.particles.mass[p], J = st_.particles.J[p];
-  for_each_fit_offset(p, [&](int node, double wx, double wy, double dx, double dy) {
-    const double ms = m * wx * wy;
-    double* mom = moments + kMoments * node;
-    mom[0] += ms;
-    mom[1] += ms * dx;
-    mom[2] += ms * dy;
-    mom[3] += ms * dx * dx;
-    mom[4] += ms * dx * dy;
-    mom[5] += ms * dy * dy;
-    mom[6] += ms * J;
-    mom[7] += ms * J * dx;
-    mom[8] += ms * J * dy;
-  });
+  const int ny = st_.grid.ny();
+  const Vec2& x = st_.particles.x[p];
+  const auto& w = st_.weights[p];
+  const double m = st_.particles.mass[p], mJ = m * st_.particles.J[p];
+  std::array<double, P + 1> y0, y1, y2;  // N_c {1, dy, dy^2}
+  for (int c = 0; c <= P; ++c) {
+    const double dy = (x.y() - greville_y_[w.j0 + c]) * inverse_cell_.y();
+    y0[c] = w.wy[c];
+    y1[c] = w.wy[c] * dy;
+    y2[c] = y1[c] * dy;
+  }
+  for (int a = 0; a <= P; ++a) {
+    const double dx = (x.x() - greville_x_[w.i0 + a]) * inverse_cell_.x();
+    const double x0 = m * w.wx[a], x1 = x0 * dx, x2 = x1 * dx;
+    const double j0 = mJ * w.wx[a], j1 = j0 * dx;
+    double* mom = moments + kMoments * ((w.i0 + a) * ny + w.j0);
+    for (int c = 0; c <= P; ++c, mom += kMoments) {
+      mom[0] += x0 * y0[c];
+      mom[1] += x1 * y0[c];
+      mom[2] += x0 * y1[c];
+      mom[3] += x2 * y0[c];
+      mom[4] += x1 * y1[c];
+      mom[5] += x0 * y2[c];
+      mom[6] += j0 * y0[c];
+      mom[7] += j1 * y0[c];
+      mom[8] += j0 * y1[c];
+    }
+  }
 }
 
 // Each control point's normal equations A (J_I, g_I h) = r, solved by cofactors; the fit
@@ -773,11 +799,19 @@ void BsmpmSimulation<P>::fit_volume_ratio(std::size_t body_index) {
 // J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)) from the fitted control points.
 template <int P>
 double BsmpmSimulation<P>::fitted_volume_ratio(std::size_t p) const {
+  const int ny = st_.grid.ny();
+  const Vec2& x = st_.particles.x[p];
+  const auto& w = st_.weights[p];
+  std::array<double, P + 1> dy;
+  for (int c = 0; c <= P; ++c) dy[c] = (x.y() - greville_y_[w.j0 + c]) * inverse_cell_.y();
   double J = 0.0;
-  for_each_fit_offset(p, [&](int node, double wx, double wy, double dx, double dy) {
-    const double* fit = &smoothing_moments_[kMoments * node];
-    J += wx * wy * (fit[0] + fit[1] * dx + fit[2] * dy);
-  });
+  for (int a = 0; a <= P; ++a) {
+    const double dx = (x.x() - greville_x_[w.i0 + a]) * inverse_cell_.x();
+    const double* fit = &smoothing_moments_[kMoments * ((w.i0 + a) * ny + w.j0)];
+    double row = 0.0;
+    for (int c = 0; c <= P; ++c, fit += kMoments) row += w.wy[c] * (fit[0] + fit[1] * dx + fit[2] * dy[c]);
+    J += w.wx[a] * row;
+  }
   return J;
 }
 

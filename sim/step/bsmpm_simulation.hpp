@@ -69,9 +69,6 @@ class BsmpmSimulation final : public Simulation {
   [[noreturn]] void throw_instability() const;
   bool density_in_range(double J) const { return J >= j_min_ && J <= j_max_; }
   // Least-squares smoothing of the fluid's J through the control points (see the .cpp).
-  // f(node, N_a(x), N_c(y), dx, dy) for each control point of p's support, (dx, dy) = (x_p - xi_I) / h.
-  template <class F>
-  void for_each_fit_offset(std::size_t p, F&& f) const;
   void add_volume_moments(std::uint32_t p);
   void fit_volume_ratio(std::size_t body_index);
   double fitted_volume_ratio(std::size_t p) const;

@@ -32,18 +32,22 @@ inline GridVelocityAt gather_velocity(const ParticleWeights<P>& w, const GridLay
 
 // Velocity gradient L_p = sum_I v_I (x) grad S_I(x_p^k), L(a, b) = d v_a / d x_b, from the
 // remapped velocities; its symmetric part times dt is the strain increment of eq. 14.
+// grad S_Ip = (N_a' N_c, N_a N_c'): per column a the sums over c, then the column's factor.
 template <int P>
 inline Mat2 velocity_gradient(const ParticleWeights<P>& w, const std::vector<Vec2>& v, int ny) {
-  Mat2 L = Mat2::Zero();
+  Vec2 dx = Vec2::Zero(), dy = Vec2::Zero();  // the columns of L: dv/dx, dv/dy
   for (int a = 0; a <= P; ++a) {
-    const int row = (w.i0 + a) * ny + w.j0;
+    const Vec2* const vi = v.data() + (w.i0 + a) * ny + w.j0;
+    Vec2 along = Vec2::Zero(), across = Vec2::Zero();  // sum_c N_c v, sum_c N_c' v
     for (int c = 0; c <= P; ++c) {
-      const Vec2& vi = v[row + c];
-      const double gx = w.gx[a] * w.wy[c], gy = w.wx[a] * w.gy[c];
-      L(0, 0) += vi.x() * gx; L(0, 1) += vi.x() * gy;
-      L(1, 0) += vi.y() * gx; L(1, 1) += vi.y() * gy;
+      along += w.wy[c] * vi[c];
+      across += w.gy[c] * vi[c];
     }
+    dx += w.gx[a] * along;
+    dy += w.wx[a] * across;
   }
+  Mat2 L;
+  L << dx, dy;
   return L;
 }
 
