@@ -1,6 +1,9 @@
 #include "probes/pressure_probe.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "core/format.hpp"
 
@@ -29,18 +32,34 @@ double PressureProbe::footprint_pressure(const ProbeContext& ctx, const std::vec
                                          const PressureSensor& sensor) {
   const Vec2 tangent(-normal.y(), normal.x());
   const double half = 0.5 * sensor.size;
-  double weighted = 0.0, volume = 0.0;
   const Particles& ps = ctx.particles;
+  // Blocks of a fixed size, summed in order: the same bits for any thread count.
+  constexpr std::size_t kBlock = 1024;
+  double weighted = 0.0, volume = 0.0;
   for (int b : fluid_bodies) {
     const Body& body = ctx.bodies[b];
-    for (std::size_t p = body.begin; p < body.end; ++p) {
-      const Vec2 d = ps.x[p] - centre;
-      const double along = d.dot(tangent), into = d.dot(normal);
-      if (std::abs(along) <= half && into >= 0.0 && into <= sensor.depth) {
-        const double V = ps.volume(p);
-        weighted += V * ps.pressure[p];
-        volume += V;
+    const long blocks = static_cast<long>((body.size() + kBlock - 1) / kBlock);
+    static thread_local std::vector<std::array<double, 2>> partial;  // kept: no allocation after the first
+    partial.resize(blocks);
+    std::array<double, 2>* const out = partial.data();  // the caller's: thread_local is per thread
+#pragma omp parallel for schedule(static) if (blocks > 1)
+    for (long k = 0; k < blocks; ++k) {
+      const std::size_t first = body.begin + k * kBlock, last = std::min(body.end, first + kBlock);
+      double w = 0.0, v = 0.0;
+      for (std::size_t p = first; p < last; ++p) {
+        const Vec2 d = ps.x[p] - centre;
+        const double along = d.dot(tangent), into = d.dot(normal);
+        if (std::abs(along) <= half && into >= 0.0 && into <= sensor.depth) {
+          const double V = ps.volume(p);
+          w += V * ps.pressure[p];
+          v += V;
+        }
       }
+      out[k] = {w, v};
+    }
+    for (long k = 0; k < blocks; ++k) {
+      weighted += partial[k][0];
+      volume += partial[k][1];
     }
   }
   return volume > 0.0 ? weighted / volume : 0.0;

@@ -339,7 +339,7 @@ void BsmpmSimulation<P>::update_grid_velocity(double dt) {
   const int ny = st_.grid.ny();
   const double cut = st_.mass_cutoff;
   for (auto& layer : st_.layers)
-    for_each_node(layer.active, ny, [&](int n, int, int) {
+    for_each_node_parallel(layer.active, ny, [&](int n, int, int) {
       const double m = layer.mass[n];
       if (m > cut) {
         const Vec2 v = layer.momentum[n] / m;                     // v_I^k, eq. 6
@@ -349,7 +349,7 @@ void BsmpmSimulation<P>::update_grid_velocity(double dt) {
   constrain(VelocityPhase::kUpdate);
   // The FLIP increment sees the constrained velocity: a_I = (v_I^{k+1} - v_I^k) / dt.
   for (auto& layer : st_.layers)
-    for_each_node(layer.active, ny, [&](int n, int, int) {
+    for_each_node_parallel(layer.active, ny, [&](int n, int, int) {
       const double m = layer.mass[n];
       if (m > cut) layer.velocity_increment[n] = layer.velocity[n] - layer.momentum[n] / m;
       else layer.velocity[n].setZero();
@@ -560,7 +560,7 @@ void BsmpmSimulation<P>::update_remap_velocity() {
   const int ny = st_.grid.ny();
   const double cut = st_.mass_cutoff;
   for (auto& layer : st_.layers)
-    for_each_node(layer.active, ny, [&](int n, int, int) {
+    for_each_node_parallel(layer.active, ny, [&](int n, int, int) {
       const double m = layer.mass[n];
       if (m > cut) layer.remap_velocity[n] /= m;  // eq. 13
       else layer.remap_velocity[n].setZero();
@@ -829,6 +829,7 @@ void BsmpmSimulation<P>::clear_grid() {
   const int ny = st_.grid.ny();
   for (auto& layer : st_.layers) {
     const NodeBox& b = layer.active;
+#pragma omp parallel for schedule(static) if ((b.i1 - b.i0) * (b.j1 - b.j0) > 4096)
     for (int i = b.i0; i < b.i1; ++i) {
       const int first = i * ny + b.j0, count = b.j1 - b.j0;
       std::fill_n(layer.mass.begin() + first, count, 0.0);

@@ -46,4 +46,12 @@ inline void for_each_node(const NodeBox& box, int ny, F&& f) {
     for (int j = box.j0; j < box.j1; ++j) f(i * ny + j, i, j);
 }
 
+// The same, columns shared among the threads: for f that touches only its own control point.
+template <class F>
+inline void for_each_node_parallel(const NodeBox& box, int ny, F&& f) {
+#pragma omp parallel for schedule(static) if ((box.i1 - box.i0) * (box.j1 - box.j0) > 4096)
+  for (int i = box.i0; i < box.i1; ++i)
+    for (int j = box.j0; j < box.j1; ++j) f(i * ny + j, i, j);
+}
+
 }  // namespace bsmpm

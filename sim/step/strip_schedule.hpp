@@ -18,20 +18,43 @@ class StripSchedule {
  public:
   static constexpr int kStripWidth = 8;  // >= P, so strips s and s+2 never overlap
 
-  // Bins the particles [begin, end) by column (first control point in x).
+  // Bins the particles [begin, end) by column (first control point in x), in ascending
+  // order within each strip. Each thread counts and places a contiguous block of the
+  // particles, the blocks in order: the schedule is the same for any thread count.
   template <class ColumnOf>
   void build(std::size_t begin, std::size_t end, int columns, ColumnOf&& column_of) {
     strips_ = columns / kStripWidth + 1;
-    offsets_.assign(strips_ + 1, 0);
     order_.resize(end - begin);
-    for (std::size_t p = begin; p < end; ++p) ++offsets_[column_of(p) / kStripWidth + 1];
-    for (int s = 0; s < strips_; ++s) offsets_[s + 1] += offsets_[s];
-    fill_.assign(offsets_.begin(), offsets_.end() - 1);
-    for (std::size_t p = begin; p < end; ++p)
-      order_[fill_[column_of(p) / kStripWidth]++] = static_cast<std::uint32_t>(p);
+    const std::size_t n = end - begin;
+    const int blocks = n > 4096 ? omp_get_max_threads() : 1;
+    counts_.assign(std::size_t(blocks) * strips_, 0);
+    offsets_.assign(strips_ + 1, 0);
+#pragma omp parallel num_threads(blocks) if (blocks > 1)
+    {
+      const int t = omp_get_thread_num();
+      const std::size_t first = begin + n * t / blocks, last = begin + n * (t + 1) / blocks;
+      std::uint32_t* const count = counts_.data() + std::size_t(t) * strips_;
+      for (std::size_t p = first; p < last; ++p) ++count[column_of(p) / kStripWidth];
+#pragma omp barrier
+#pragma omp single
+      {
+        // Strip s holds block 0's particles of s, then block 1's, ...: where each block starts.
+        std::uint32_t at = 0;
+        for (int s = 0; s < strips_; ++s) {
+          offsets_[s] = at;
+          for (int b = 0; b < blocks; ++b) {
+            const std::uint32_t c = counts_[std::size_t(b) * strips_ + s];
+            counts_[std::size_t(b) * strips_ + s] = at;
+            at += c;
+          }
+        }
+        offsets_[strips_] = at;
+      }
+      for (std::size_t p = first; p < last; ++p) order_[count[column_of(p) / kStripWidth]++] = static_cast<std::uint32_t>(p);
+    }
   }
 
-  std::size_t bytes() const { return heap_bytes(offsets_) + heap_bytes(fill_) + heap_bytes(order_); }
+  std::size_t bytes() const { return heap_bytes(offsets_) + heap_bytes(counts_) + heap_bytes(order_); }
 
   // Calls f(p) for every particle; no two concurrent calls touch the same control point.
   template <class F>
@@ -46,7 +69,7 @@ class StripSchedule {
 
  private:
   int strips_ = 0;
-  std::vector<std::uint32_t> offsets_, fill_, order_;
+  std::vector<std::uint32_t> offsets_, counts_, order_;  // counts_: per block and strip
 };
 
 }  // namespace bsmpm

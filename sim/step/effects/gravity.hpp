@@ -56,7 +56,7 @@ class Gravity final : public EffectBase<Gravity<P>, P> {
   void grid_forces(StepState<P>& st) override {
     const int ny = st.grid.ny();
     for (auto& layer : st.layers)
-      for_each_node(layer.active, ny, [&](int n, int, int) { layer.force[n] += layer.mass[n] * b_; });
+      for_each_node_parallel(layer.active, ny, [&](int n, int, int) { layer.force[n] += layer.mass[n] * b_; });
   }
 
  private:
