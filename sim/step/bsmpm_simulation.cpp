@@ -361,7 +361,7 @@ namespace {
 // Puts a position that a step carried out of [lo, hi] back on its edge; true if it did.
 inline bool keep_inside(Vec2& x, const Vec2& lo, const Vec2& hi) {
   const Vec2 inside = x.cwiseMax(lo).cwiseMin(hi);
-  if (inside == x) return false;
+  if (inside.x() == x.x() && inside.y() == x.y()) return false;  // (Eigen's == was a call per particle)
   x = inside;
   return true;
 }
@@ -819,6 +819,7 @@ template <int P>
 void BsmpmSimulation<P>::clear_volume_moments(std::size_t body_index) {
   const int ny = st_.grid.ny();
   const NodeBox b = st_.layers[st_.bodies[body_index].layer].active;
+#pragma omp parallel for schedule(static) if ((b.i1 - b.i0) * (b.j1 - b.j0) > 4096)
   for (int i = b.i0; i < b.i1; ++i)
     std::fill_n(smoothing_moments_.begin() + kMoments * (i * ny + b.j0), kMoments * (b.j1 - b.j0), 0.0);
 }
