@@ -23,6 +23,10 @@ struct SignalSpeed {
   double operator()(const RigidBody& r) const { return r.velocity.norm(); }
 };
 
+// Both components finite: Eigen's allFinite() compares x - x with itself, an out-of-line
+// call per particle in the stress pass.
+inline bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+
 std::string describe_material(const Body& b) {
   if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&b.material)) {
     const std::string viscosity =
@@ -361,7 +365,7 @@ namespace {
 // Puts a position that a step carried out of [lo, hi] back on its edge; true if it did.
 inline bool keep_inside(Vec2& x, const Vec2& lo, const Vec2& hi) {
   const Vec2 inside = x.cwiseMax(lo).cwiseMin(hi);
-  if (inside.x() == x.x() && inside.y() == x.y()) return false;  // (Eigen's == was a call per particle)
+  if (inside == x) return false;
   x = inside;
   return true;
 }
@@ -644,8 +648,8 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
       ps.pressure[p] = pressure;
       ps.stress[p] = mat.template stress<decltype(viscous)::value>(pressure, L);
       body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
-      body_invalid = body_invalid || !density_in_range(J) || !std::isfinite(pressure) || !ps.v[p].allFinite() ||
-                     !ps.x[p].allFinite();
+      body_invalid = body_invalid || !density_in_range(J) || !std::isfinite(pressure) || !finite(ps.v[p]) ||
+                     !finite(ps.x[p]);
     }
   };
   // Viscosity only when mu > 0: the inviscid loop has no deviatoric term at all.
@@ -674,8 +678,8 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
     ps.stress[p] = sigma;
     ps.pressure[p] = -0.5 * sigma.trace();
     body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
-    body_invalid = body_invalid || !density_in_range(J) || !sigma.allFinite() || !ps.v[p].allFinite() ||
-                   !ps.x[p].allFinite();
+    body_invalid = body_invalid || !density_in_range(J) || !sigma.allFinite() || !finite(ps.v[p]) ||
+                   !finite(ps.x[p]);
   }
   return {body_speed, body_invalid};
 }
