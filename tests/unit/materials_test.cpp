@@ -44,6 +44,25 @@ TEST_CASE("Equations of state give the closed-form pressure at a given density",
   CHECK(f.sound_speed(1.0 / 1.01) == Approx(std::sqrt(1000.0 * 1.01 * 1.01)).epsilon(1e-12));
 }
 
+TEST_CASE("The tension cut-off bounds the pressure from below and leaves compression alone", "[materials]") {
+  // materials.<name>.min_pressure (docs/method.md §4): p = max(p_EOS, p_min).
+  for (auto eos : {EquationOfState::kLinear, EquationOfState::kTait}) {
+    WeaklyCompressibleFluid f;
+    f.bulk_modulus = 1e6;
+    f.density = 1000.0;
+    f.eos = eos;
+    const double stretched = f.pressure(1.01), compressed = f.pressure(0.99);
+    REQUIRE(stretched < -9e3);  // J = 1.01 carries about -10 kPa without the cut-off
+    f.min_pressure = 0.0;
+    CHECK(f.pressure(1.01) == 0.0);
+    CHECK(f.pressure(0.99) == compressed);
+    f.min_pressure = -2e3;
+    CHECK(f.pressure(1.01) == -2e3);
+    CHECK(f.pressure(1.0005) == Approx(eos == EquationOfState::kLinear ? 1e6 * (1 / 1.0005 - 1)
+                                                                      : 1e6 / 7 * (std::pow(1 / 1.0005, 7) - 1)));
+  }
+}
+
 TEST_CASE("Viscous stress is the plane-strain deviator of the rate of deformation", "[materials]") {
   WeaklyCompressibleFluid f;
   f.viscosity = 2.0;
