@@ -630,6 +630,9 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
     });
     fit_volume_ratio(body.index);
   }
+  // With a tension cut-off, water does not stretch past the J at which it reaches it
+  // (method.md §4): a particle there keeps its volume, as water in a thinning sheet does.
+  const double j_cut = mat.min_pressure > -1e299 ? mat.volume_ratio(mat.min_pressure) : 1e300;
   auto run = [&](auto viscous) {
 #pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
     for (long p = body.begin; p < body.end; ++p) {
@@ -644,6 +647,7 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
         J = ps.J[p] * (Mat2::Identity() + dt * L).determinant();
         ps.J[p] = J;
       }
+      if (J > j_cut) ps.J[p] = J = j_cut;
       const double pressure = mat.pressure(J);
       ps.pressure[p] = pressure;
       ps.stress[p] = mat.template stress<decltype(viscous)::value>(pressure, L);
