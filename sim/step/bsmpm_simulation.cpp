@@ -309,7 +309,8 @@ void BsmpmSimulation<P>::scatter_body(std::size_t b) {
     for (int a = 0; a <= P; ++a) {
       const int row = (w.i0 + a) * ny + w.j0;
       const double wx = w.wx[a], mx = m * wx;
-      const Vec2 force_x = w.gx[a] * Vsigma.col(0), force_y = wx * Vsigma.col(1);  // Vsigma grad S = N_c force_x + N_c' force_y
+      // Vsigma grad S_Ip = N_c force_x + N_c' force_y
+      const Vec2 force_x = w.gx[a] * Vsigma.col(0), force_y = wx * Vsigma.col(1);
       Vec2 at_column = mv;  // APIC: m (v_p + C_p (xi_I - x_p)) = at_column + dy mC.col(1)
       if constexpr (kAffine) at_column += (gx[w.i0 + a] - xp.x()) * mC.col(0);
       for (int c = 0; c <= P; ++c) {
@@ -321,7 +322,8 @@ void BsmpmSimulation<P>::scatter_body(std::size_t b) {
           momentum[row + c] += s * mv;   // eq. 6 (numerator)
         }
         force[row + c] -= w.wy[c] * force_x + w.gy[c] * force_y;  // eq. 7
-        if constexpr (kMassGradient) mass_gradient[row + c] += m * Vec2(w.gx[a] * w.wy[c], wx * w.gy[c]);  // contact normals
+        if constexpr (kMassGradient)  // contact normals
+          mass_gradient[row + c] += m * Vec2(w.gx[a] * w.wy[c], wx * w.gy[c]);
         if constexpr (kVolume) volume[row + c] += s * Vp;
       }
     }
@@ -734,6 +736,7 @@ void BsmpmSimulation<P>::throw_instability() const {
 // control point do not span a plane (a thin film), the fit falls back to the mass average.
 // The offsets x_p - xi_I use the particles' new positions x^{k+1}, where their J now sits;
 // the step's weights S_Ip(x^k) only localise the fit, which stays exact for linear fields.
+//
 // Moments per control point, with d = (x_p - xi_I) / h:
 // sum m S, sum m S d (2), sum m S d d^T (3), sum m S J, sum m S J d (2).
 // S_Ip = N_a(x) N_c(y) and d = (dx_a, dy_c): every moment is a product of one factor per

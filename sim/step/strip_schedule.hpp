@@ -50,7 +50,8 @@ class StripSchedule {
         }
         offsets_[strips_] = at;
       }
-      for (std::size_t p = first; p < last; ++p) order_[count[column_of(p) / kStripWidth]++] = static_cast<std::uint32_t>(p);
+      for (std::size_t p = first; p < last; ++p)
+        order_[count[column_of(p) / kStripWidth]++] = static_cast<std::uint32_t>(p);
     }
   }
 
