@@ -8,12 +8,20 @@
 
 using namespace bsmpm;
 
+namespace {
+// Water of K = 1 MPa, rho0 = 1000 kg/m3 with the given equation of state.
+WeaklyCompressibleFluid water(EquationOfState eos) {
+  WeaklyCompressibleFluid f;
+  f.bulk_modulus = 1e6;
+  f.density = 1000.0;
+  f.eos = eos;
+  return f;
+}
+}  // namespace
+
 TEST_CASE("Fluid equations of state invert and give the sound speed", "[materials]") {
   for (auto eos : {EquationOfState::kLinear, EquationOfState::kTait}) {
-    WeaklyCompressibleFluid f;
-    f.bulk_modulus = 1e6;
-    f.density = 1000.0;
-    f.eos = eos;
+    WeaklyCompressibleFluid f = water(eos);
     for (double p : {-2e3, 0.0, 3e3, 5e4}) {
       const double J = f.volume_ratio(p);
       CHECK(f.pressure(J) == Approx(p).margin(1e-9));
@@ -47,10 +55,7 @@ TEST_CASE("Equations of state give the closed-form pressure at a given density",
 TEST_CASE("The tension cut-off bounds the pressure from below and leaves compression alone", "[materials]") {
   // materials.<name>.min_pressure (docs/method.md §4): p = max(p_EOS, p_min).
   for (auto eos : {EquationOfState::kLinear, EquationOfState::kTait}) {
-    WeaklyCompressibleFluid f;
-    f.bulk_modulus = 1e6;
-    f.density = 1000.0;
-    f.eos = eos;
+    WeaklyCompressibleFluid f = water(eos);
     const double stretched = f.pressure(1.01), compressed = f.pressure(0.99);
     REQUIRE(stretched < -9e3);  // J = 1.01 carries about -10 kPa without the cut-off
     f.min_pressure = 0.0;
