@@ -4,11 +4,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -91,6 +93,17 @@ inline const Probe* find_probe(const Simulation& sim, const std::string& name) {
   for (const auto& p : sim.probes())
     if (p->name() == name) return p.get();
   return nullptr;
+}
+
+// The lowest P* (column 3) a pressure probe reads from its first sample above `contact` on;
+// none if it never reads above it.
+inline std::optional<double> lowest_after_contact(const Probe& probe, double contact) {
+  std::optional<double> lowest;
+  for (std::size_t r = 0; r < probe.row_count(); ++r) {
+    const double p_star = probe.row(r)[3];
+    if (lowest || p_star > contact) lowest = std::min(lowest.value_or(p_star), p_star);
+  }
+  return lowest;
 }
 
 }  // namespace bsmpm::test

@@ -31,9 +31,13 @@ std::string describe_material(const Body& b) {
   if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&b.material)) {
     const std::string viscosity =
         f->viscosity > 0.0 ? format("viscosity %g Pa s", f->viscosity) : "inviscid (no viscous term)";
-    return format("fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s", b.name.c_str(),
+    const std::string cut_off =
+        f->min_pressure > -1e299 ? format(", tension cut-off p >= %g Pa (J held at %.6g)", f->min_pressure,
+                                          f->volume_ratio(f->min_pressure))
+                                 : "";
+    return format("fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s%s", b.name.c_str(),
                   f->eos == EquationOfState::kTait ? "Tait" : "linear", f->bulk_modulus, f->sound_speed(1.0),
-                  f->density, viscosity.c_str());
+                  f->density, viscosity.c_str(), cut_off.c_str());
   }
   if (const auto* e = std::get_if<ElasticSolid>(&b.material))
     return format("elastic stress [%s]: %s, E = %g Pa, nu = %g, rho0 = %g kg/m3", b.name.c_str(),
