@@ -45,8 +45,8 @@ const char* kHelp =
     "update, shifting, grid fields), the newest kept; `bsmpm check` and `bsmpm run` predict a\n"
     "run's wall time from it.\n";
 
-// How idle OpenMP threads wait: as the environment says; main.cpp sets PASSIVE when it says
-// nothing (or, should that have failed, libgomp spins for a while: "default").
+// How idle OpenMP threads wait: as the environment says; main.cpp sets GOMP_SPINCOUNT=1000
+// when it says nothing (or, should that have failed, libgomp spins for a while: "default").
 std::string omp_wait_policy() {
   if (const char* policy = std::getenv("OMP_WAIT_POLICY")) return policy;
   if (const char* spin = std::getenv("GOMP_SPINCOUNT")) return std::string("GOMP_SPINCOUNT=") + spin;

@@ -12,17 +12,20 @@
 
 namespace {
 
-// OpenMP threads sleep between parallel loops instead of spinning, unless the environment
-// says otherwise (OMP_WAIT_POLICY, or GOMP_SPINCOUNT). Spinning threads that share the cores
-// with another job take the time that job needs: on 2 cores beside two other jobs, a
-// 2-thread step of lobovsky_h300 at 2 mm took 114-151 ms spinning and 60-64 ms passive
-// (docs/validation.md, speed). libgomp reads its environment once, when it is loaded, and
-// has no call to change the policy afterwards (nor does setting the variable from the
-// preinit array reach it): the program starts itself again with the variable set. If that
-// fails it carries on, spinning.
-void default_to_passive_waiting(char** argv) {
+// OpenMP threads spin briefly and then sleep between parallel loops (GOMP_SPINCOUNT=1000,
+// the spin libgomp itself uses when a team has more threads than free cores), unless the
+// environment says otherwise (OMP_WAIT_POLICY, or GOMP_SPINCOUNT). Spinning long takes the
+// time another job on the same cores needs (on 2 cores beside two other jobs a 2-thread step
+// of lobovsky_h300 at 2 mm took 114-151 ms with libgomp's default spin, 60-64 ms passive);
+// sleeping at once costs a wake-up per parallel loop (the elastic gate at 2 mm on an idle
+// machine: 8.3-8.9 ms a step passive, 6.8-7.1 ms with the short spin; beside two other jobs
+// 16.5-18.4 and 13.5-18.6 ms; docs/validation.md, speed). libgomp reads its environment once,
+// when it is loaded, and has no call to change the policy afterwards (nor does setting the
+// variable from the preinit array reach it): the program starts itself again with the
+// variable set. If that fails it carries on with libgomp's default.
+void default_to_short_spin(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
-  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0) return;
+  if (setenv("GOMP_SPINCOUNT", "1000", 1) != 0) return;
   execv("/proc/self/exe", argv);
 }
 
@@ -55,7 +58,7 @@ const char* kHelp =
 
 int main(int argc, char** argv) {
   using namespace bsmpm;
-  default_to_passive_waiting(argv);
+  default_to_short_spin(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kHelp, args.empty() ? stderr : stdout);
