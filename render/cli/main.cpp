@@ -18,7 +18,7 @@ namespace {
 // time another job on the same cores needs (on 2 cores beside two other jobs a 2-thread step
 // of lobovsky_h300 at 2 mm took 114-151 ms with libgomp's default spin, 60-64 ms passive);
 // sleeping at once costs a wake-up per parallel loop (the elastic gate at 2 mm on an idle
-// machine: 8.3-8.9 ms a step passive, 6.8-7.1 ms with the short spin; beside two other jobs
+// machine: 8.3-9.2 ms a step passive, 6.8-8.0 ms with the short spin; beside two other jobs
 // 16.5-18.4 and 13.5-18.6 ms; docs/validation.md, speed). libgomp reads its environment once,
 // when it is loaded, and has no call to change the policy afterwards (nor does setting the
 // variable from the preinit array reach it): the program starts itself again with the
