@@ -40,6 +40,12 @@ struct WeaklyCompressibleFluid {
     return std::pow(ratio, tait_gamma);
   }
 
+  // A tension cut-off is set (the default, -1e300, keeps the paper's law).
+  bool has_tension_cut_off() const { return min_pressure > -1e299; }
+
+  // The largest J a particle keeps (method.md §4): J(min_pressure) with a cut-off, else none.
+  double largest_volume_ratio() const { return has_tension_cut_off() ? volume_ratio(min_pressure) : 1e300; }
+
   // Inverse of pressure(): the J at which the fluid carries pressure p.
   double volume_ratio(double p) const {
     if (eos == EquationOfState::kLinear) return 1.0 / (1.0 + p / bulk_modulus);

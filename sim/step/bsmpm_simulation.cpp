@@ -32,9 +32,9 @@ std::string describe_material(const Body& b) {
     const std::string viscosity =
         f->viscosity > 0.0 ? format("viscosity %g Pa s", f->viscosity) : "inviscid (no viscous term)";
     const std::string cut_off =
-        f->min_pressure > -1e299 ? format(", tension cut-off p >= %g Pa (J held at %.6g)", f->min_pressure,
-                                          f->volume_ratio(f->min_pressure))
-                                 : "";
+        f->has_tension_cut_off()
+            ? format(", tension cut-off p >= %g Pa (J held at %.6g)", f->min_pressure, f->largest_volume_ratio())
+            : "";
     return format("fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s%s", b.name.c_str(),
                   f->eos == EquationOfState::kTait ? "Tait" : "linear", f->bulk_modulus, f->sound_speed(1.0),
                   f->density, viscosity.c_str(), cut_off.c_str());
@@ -638,7 +638,7 @@ typename BsmpmSimulation<P>::DeformationUpdate BsmpmSimulation<P>::update_body(c
   }
   // With a tension cut-off, water does not stretch past the J at which it reaches it
   // (method.md §4): a particle there keeps its volume, as water in a thinning sheet does.
-  const double j_cut = mat.min_pressure > -1e299 ? mat.volume_ratio(mat.min_pressure) : 1e300;
+  const double j_cut = mat.largest_volume_ratio();
   auto run = [&](auto viscous) {
 #pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
     for (long p = body.begin; p < body.end; ++p) {
