@@ -528,8 +528,6 @@ void BsmpmSimulation<P>::move_particles_and_remap_momentum(double dt) {
       if (rigid) {
         v = rigid->velocity;
         v_new = v;
-      } else if constexpr (kAffine) {
-        v = flip * (ps.v[p] + grid.increment) + (1.0 - flip) * v_new;
       } else {
         v = flip * (ps.v[p] + grid.increment) + (1.0 - flip) * v_new;  // eq. 11 (flip = 1: paper)
       }
