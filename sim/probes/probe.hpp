@@ -2,6 +2,7 @@
 // A scene without probes has none: sampling costs nothing then.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,6 +17,10 @@ struct ProbeContext {
   const std::vector<Body>& bodies;
   const std::vector<std::uint32_t>& index_of_id;
   double time;
+  // The last step's wall impulses per control point (left, right, bottom, top; empty
+  // before the first step) and its length, for sensors of the walls' reaction.
+  const std::array<std::vector<Vec2>, 4>* wall_impulse = nullptr;
+  double dt = 0.0;
 };
 
 // Scales for the non-dimensional columns: T* = t sqrt(g/H), P* = P / (rho g H).

@@ -9,6 +9,7 @@
 #include "probes/front_probe.hpp"
 #include "probes/material_point.hpp"
 #include "probes/pressure_probe.hpp"
+#include "probes/wall_reaction_probe.hpp"
 #include "scene/effect_registry.hpp"
 #include "step/bsmpm_simulation.hpp"
 #include "step/effects/gravity.hpp"
@@ -55,6 +56,33 @@ void seed_body(const SceneDescription& scene, const BodyDescription& desc, BodyI
   body.end = ps.size();
 }
 
+// The share of each control point along a wall that a sensor face [a, b] carries: the
+// integral of its basis function over the face over its whole integral (method.md §8, eq. S2).
+template <int P>
+std::vector<double> face_shares(const ClampedBSpline<P>& basis, double a, double b) {
+  std::vector<double> share(basis.basis_count(), 0.0);
+  basis.add_integrals(a, b, share);
+  for (int k = 0; k < basis.basis_count(); ++k) share[k] /= basis.integral(k);
+  return share;
+}
+
+std::unique_ptr<Probe> make_wall_reaction_probe(const SceneDescription& scene, const ProbeDescription& d) {
+  const bool vertical = d.wall == kLeft || d.wall == kRight;
+  const int axis = vertical ? 1 : 0;
+  const double origin = scene.domain_min[axis], h = scene.actual_cell_size()[axis];
+  const int cells = vertical ? scene.cells_y() : scene.cells_x();
+  const double a = std::max(d.position - 0.5 * d.size, origin);
+  const double b = std::min(d.position + 0.5 * d.size, origin + h * cells);
+  std::vector<double> share;
+  switch (scene.order) {
+    case 1: share = face_shares(ClampedBSpline<1>(origin, h, cells), a, b); break;
+    case 2: share = face_shares(ClampedBSpline<2>(origin, h, cells), a, b); break;
+    default: share = face_shares(ClampedBSpline<3>(origin, h, cells), a, b); break;
+  }
+  return std::make_unique<WallReactionProbe>(d.name, d.interval, d.wall, d.position, b - a, std::move(share),
+                                             scene.reference);
+}
+
 std::unique_ptr<Probe> make_probe(const SceneDescription& scene, const ProbeDescription& d, const Particles& ps,
                                   const std::vector<Body>& bodies) {
   std::vector<int> fluids;
@@ -74,6 +102,8 @@ std::unique_ptr<Probe> make_probe(const SceneDescription& scene, const ProbeDesc
       return std::make_unique<PressureProbe>(d.name, d.interval, centre, normal, sensor, fluids, scene.reference,
                                              std::string(wall_side_name(d.wall)) + " wall");
     }
+    case ProbeDescription::Kind::kWallReaction:
+      return make_wall_reaction_probe(scene, d);
     case ProbeDescription::Kind::kSurfacePressure: {
       MaterialPoint anchor(ps, bodies[d.body], d.point);
       return std::make_unique<PressureProbe>(d.name, d.interval, anchor, d.normal, sensor, fluids, scene.reference,

@@ -32,10 +32,10 @@ struct BodyDescription {
 };
 
 struct ProbeDescription {
-  enum class Kind { kWallPressure, kSurfacePressure, kMaterialPoint, kFront };
+  enum class Kind { kWallPressure, kWallReaction, kSurfacePressure, kMaterialPoint, kFront };
   std::string name;
   Kind kind = Kind::kWallPressure;
-  int wall = 0;                    // WallSide, for kWallPressure
+  int wall = 0;                    // WallSide, for kWallPressure and kWallReaction
   double position = 0.0;           // along the wall [m]
   int body = -1;                   // for kSurfacePressure, kMaterialPoint, kFront
   Vec2 point = Vec2::Zero();       // reference position on the body

@@ -160,7 +160,7 @@ template <int P>
 void BsmpmSimulation<P>::sample_probes() {
   if (probes_.empty()) return;
   const PhaseScope timed(st_.timer, StepPhase::kProbes);
-  const ProbeContext ctx{st_.particles, st_.bodies, st_.index_of_id, st_.time};
+  const ProbeContext ctx{st_.particles, st_.bodies, st_.index_of_id, st_.time, &st_.diagnostics.wall_impulse, st_.dt};
   for (auto& probe : probes_) probe->maybe_sample(ctx);
 }
 

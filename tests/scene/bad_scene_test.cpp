@@ -80,6 +80,8 @@ const std::vector<BadCase> kCases = {
     {"probe on no wall", {{22, "wall = \"front\""}}, 22, 8, "probes[0].wall", "must be \"left\", \"right\", \"bottom\" or \"top\""},
     {"probe off the wall", {{23, "position = 0.5"}}, 23, 12, "probes[0].position", "must be in \\[0, 0.2\\]"},
     {"probe file name", {{20, "name = \"a/b\""}}, 20, 8, "probes[0].name", "letters, digits"},
+    {"reaction sensor with a depth", {{21, "type = \"wall_reaction\"\ndepth = 0.002"}}, 22, 1, "probes[0].depth",
+     "unknown key"},
     {"hydrostatic solid",
      {{11, "type = \"elastic\""}, {13, "youngs_modulus = 1e6"}, {14, ""},
       {18, "shape = { type = \"rectangle\", min = [0.0, 0.0], max = [0.1, 0.1] }\ninitial_stress = \"hydrostatic\""}},

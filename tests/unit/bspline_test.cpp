@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <random>
+#include <vector>
 
 #include "bspline/clamped_bspline.hpp"
 
@@ -140,4 +141,27 @@ TEMPLATE_TEST_CASE("B-spline basis: integrals add up to the domain length", "[bs
     if (b.evaluate(x, w, dw) == 0) q += w[0] * 2.5 / samples;
   }
   CHECK(q == Approx(b.integral(0)).epsilon(1e-6));
+}
+
+TEMPLATE_TEST_CASE("B-spline basis: integrals over a part of the axis", "[bspline]", Order<1>, Order<2>, Order<3>) {
+  // add_integrals (the wall_reaction sensor's shares, docs/method.md §8): over the whole
+  // axis each function's integral; over [a, b] they add up to b - a (partition of unity);
+  // two adjacent parts add up to their union; a part beyond the axis is clipped to it.
+  constexpr int P = TestType::value;
+  ClampedBSpline<P> b(0.1, 0.25, 10);
+  const int n = b.basis_count();
+  std::vector<double> whole(n, 0.0);
+  b.add_integrals(0.1, 2.6, whole);
+  for (int i = 0; i < n; ++i) CHECK(whole[i] == Approx(b.integral(i)).margin(kTol));
+  std::vector<double> left(n, 0.0), right(n, 0.0), both(n, 0.0);
+  b.add_integrals(0.03, 0.777, left);   // starts before the axis, ends inside a cell
+  b.add_integrals(0.777, 1.9, right);
+  b.add_integrals(0.1, 1.9, both);
+  double sum_left = 0.0;
+  for (int i = 0; i < n; ++i) {
+    sum_left += left[i];
+    CHECK(left[i] + right[i] == Approx(both[i]).margin(kTol));
+    CHECK(left[i] >= 0.0);
+  }
+  CHECK(sum_left == Approx(0.777 - 0.1).margin(kTol));
 }
