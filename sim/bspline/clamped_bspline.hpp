@@ -60,8 +60,7 @@ class ClampedBSpline {
       const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
       for (const auto& [u, weight] : {std::pair{-kNode, kEdge}, std::pair{0.0, kMiddle}, std::pair{kNode, kEdge}}) {
         Weights w, dw;
-        const double x = std::min(mid + u * half, origin_ + h_ * (c + 1));
-        const int first = evaluate(x, w, dw);
+        const int first = evaluate(mid + u * half, w, dw);  // inside cell c: first == c
         for (int k = 0; k <= P; ++k) out[first + k] += weight * half * w[k];
       }
     }

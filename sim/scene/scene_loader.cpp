@@ -179,7 +179,8 @@ void read_probes(TableReader& root, SceneDescription& s, const SceneTables& scen
     if (p.name == "conservation") t.fail("name", "\"conservation\" is the run's own series (conservation.csv)");
     for (const auto& other : s.probes)
       if (other.name == p.name) t.fail("name", "a probe named \"" + p.name + "\" already exists");
-    const std::string type = t.choice("type", {"wall_pressure", "wall_reaction", "surface_pressure", "material_point", "front"});
+    const std::string type =
+        t.choice("type", {"wall_pressure", "wall_reaction", "surface_pressure", "material_point", "front"});
     p.interval = t.number_or("interval", 0.0, Range::non_negative());
     if (type == "front") {
       p.kind = ProbeDescription::Kind::kFront;
@@ -195,7 +196,8 @@ void read_probes(TableReader& root, SceneDescription& s, const SceneTables& scen
       // A reaction sensor reads the wall itself: it has a face, no depth into the water.
       if (type != "wall_reaction" && t.has("depth")) p.depth = t.number("depth", Range::positive());
       if (type == "wall_pressure" || type == "wall_reaction") {
-        p.kind = type == "wall_pressure" ? ProbeDescription::Kind::kWallPressure : ProbeDescription::Kind::kWallReaction;
+        p.kind = type == "wall_pressure" ? ProbeDescription::Kind::kWallPressure
+                                         : ProbeDescription::Kind::kWallReaction;
         const std::vector<std::string>& walls = wall_side_names();
         const std::string wall = t.choice("wall", walls);
         p.wall = static_cast<int>(std::find(walls.begin(), walls.end(), wall) - walls.begin());

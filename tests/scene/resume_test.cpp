@@ -1,13 +1,15 @@
 // Checkpoint and resume through the program: a run stopped by SIGINT or SIGTERM, or killed
 // (SIGKILL) between two checkpoints, and resumed with bsmpm run --resume, ends with frames,
 // probe series, conservation rows and CSV files bit-identical to those of the run that was
-// never interrupted; frames and rows continue without a gap or a duplicate.
+// never interrupted; frames and rows continue without a gap or a duplicate. The scene carries
+// sensors of the walls' reaction besides the particle probes.
 #include <catch2/catch.hpp>
 
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -58,8 +60,24 @@ int run_program(const std::vector<std::string>& args, int signal, Stop stop_when
   return status;
 }
 
+// The Lobovsky tank with two sensors of the walls' reaction added (the water presses on the
+// floor and the left wall from the start): they read the last step's wall impulses, which a
+// resumed run must rebuild exactly from its first step on.
+std::string scene_with_reaction_probes() {
+  static const std::string path = [] {
+    const fs::path p = test::scratch_dir("resume_scene") / "lobovsky_h300_reaction.toml";
+    std::ofstream(p) << read_text(test::scene_path("lobovsky_h300.toml"))
+                     << "\n[[probes]]\nname = \"R_floor\"\ntype = \"wall_reaction\"\nwall = \"bottom\"\n"
+                        "position = 0.3\nsize = 0.6\n"
+                        "\n[[probes]]\nname = \"R_left\"\ntype = \"wall_reaction\"\nwall = \"left\"\n"
+                        "position = 0.1\nsize = 0.2\n";
+    return p.string();
+  }();
+  return path;
+}
+
 std::vector<std::string> run_args(const fs::path& dir, const std::vector<std::string>& extra = {}) {
-  std::vector<std::string> a = {"run", test::scene_path("lobovsky_h300.toml"), "--out", dir.string()};
+  std::vector<std::string> a = {"run", scene_with_reaction_probes(), "--out", dir.string()};
   a.insert(a.end(), kSceneArgs.begin(), kSceneArgs.end());
   a.insert(a.end(), extra.begin(), extra.end());
   return a;
@@ -93,7 +111,9 @@ void require_identical_runs(const fs::path& a, const fs::path& b) {
       }
   }
   h5::Handle pa = h5::open_group(fa, "probes"), pb = h5::open_group(fb, "probes");
-  for (const auto& probe : h5::children(pa)) {
+  const auto probes = h5::children(pa);
+  REQUIRE(std::count(probes.begin(), probes.end(), "R_floor") == 1);
+  for (const auto& probe : probes) {
     INFO("probe " << probe);
     CHECK(dataset_bytes(pa, probe) == dataset_bytes(pb, probe));
     CHECK(read_text(a / (probe + ".csv")) == read_text(b / (probe + ".csv")));

@@ -81,7 +81,10 @@ class TankWalls final : public EffectBase<TankWalls<P>, P> {
     const bool update = phase == VelocityPhase::kUpdate;
     auto& impulse = st.diagnostics.wall_impulse;
     if (update) {
-      impulse[kLeft].resize(ny); impulse[kRight].resize(ny); impulse[kBottom].resize(nx); impulse[kTop].resize(nx);
+      // With a value: Eigen's default constructor leaves a Vec2 uninitialised, and the
+      // first step of a resumed run gets memory the checkpoint's reading left behind.
+      for (const int side : {kLeft, kRight}) impulse[side].resize(ny, Vec2::Zero());
+      for (const int side : {kBottom, kTop}) impulse[side].resize(nx, Vec2::Zero());
     }
     held_.resize(st.layers.size());
     for (std::size_t l = 0; l < st.layers.size(); ++l) {
