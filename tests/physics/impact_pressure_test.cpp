@@ -54,7 +54,7 @@ TEST_CASE("A plane jet on a wall: stagnation pressure and momentum flux", "[phys
   // On the axis. Measured 0.70 p0 (APIC + smoothed J + shifting, the shipped options); the
   // solver of the first release read 0.57 p0, FLIP with 5 % PIC 0.84 p0 but swinging by
   // 0.29 p0. The wall's reaction force is within 2 % of rho U^2 b in every variant on a
-  // larger domain (docs/validation.md, "Impact pressure"; here R_floor reads 1.10 rho U^2 b
+  // larger domain (docs/validation.md, "Impact pressure"; here R_floor reads 1.11 rho U^2 b
   // over t = 0.06-0.12, 1.03 without shifting, next test): what is left of the deficit is how
   // the particles next to the wall carry pressure. Bound: the measured value less 0.08 p0,
   // about one standard deviation of the axis signal.
@@ -129,7 +129,7 @@ TEST_CASE("The floor's reaction is the momentum the jet loses", "[physics][impac
   // round-off. Particle shifting does not conserve momentum (method.md §10), so it is off
   // here. Measured 2026-12-02: impulse 25.5214 N s/m over 0.125 s, relative difference
   // 2.2e-7; bound ten times that, 2e-6. With shifting on (the shipped scene) the reaction
-  // exceeds the momentum loss by 4 % over the run (7 % over t = 0.06-0.12).
+  // exceeds the momentum loss by 4 % over the run (6 % over t = 0.06-0.12).
   const auto run = test::run_scene("jet_on_wall.toml", {"solver.particle_shifting=0"});
   const Probe* floor = test::find_probe(*run.sim, "R_floor");
   REQUIRE(floor != nullptr);
