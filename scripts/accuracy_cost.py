@@ -6,7 +6,7 @@ accuracy-cost studies against its reference, and its cost.
                              [--gate DIR] [--lobovsky DIR] [--extra PROBLEM RUN_DIR LABEL ...]
                              [--png media/accuracy_cost.png] [--csv OUT.csv] [--markdown OUT.md]
 
-Each DIR is the output directory of `bsmpm study studies/accuracy_cost_PROBLEM.toml --dir DIR`
+Each DIR is the output directory of `bsmpm study scenes/studies/accuracy_cost_PROBLEM.toml --dir DIR`
 (its CSV names every case's run directory); --extra adds single runs (e.g. the Lobovsky tank
 at 4 mm as shipped, run with `bsmpm run`). The errors, each relative, as
 docs/accuracy-cost.md defines them:

@@ -1,5 +1,5 @@
 // bsmpm study STUDY.toml: validates a study, writes its cases (OUT/plan.json) and runs them
-// through Snakemake (scripts/study/Snakefile), on local cores or on a Slurm cluster, while
+// through Snakemake (scripts/workflow/Snakefile), on local cores or on a Slurm cluster, while
 // printing the progress of the study as a whole. docs/studies.md.
 #include <fcntl.h>
 #include <signal.h>
@@ -47,7 +47,7 @@ const char* kHelp =
     "options\n"
     "  --dir OUT          output directory (default runs/NAME, NAME the study's name)\n"
     "  --cores N          local cores for Snakemake (default: all)\n"
-    "  --slurm            submit each case as a Slurm job (profile scripts/study/slurm_profile)\n"
+    "  --slurm            submit each case as a Slurm job (profile scripts/workflow/slurm_profile)\n"
     "  --partition P      Slurm partition (default: the profile's)\n"
     "  --time-limit MIN   Slurm time limit per case in minutes (default: the profile's)\n"
     "  --jobs N           Slurm jobs queued at once (default 100)\n"

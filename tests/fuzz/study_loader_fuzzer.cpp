@@ -1,5 +1,5 @@
 // Fuzzes the study loader (load_study_text): any text is a study or a bsmpm::Error. The
-// study's path lies in the source tree's studies/ so that a relative base scene
+// study's path lies in the source tree's scenes/studies/ so that a relative base scene
 // ("../scenes/...") can be found, as the committed corpus has it.
 #include <cstddef>
 #include <cstdint>
@@ -11,7 +11,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    (void)bsmpm::load_study_text(text, BSMPM_SOURCE_DIR "/studies/fuzz.toml");
+    (void)bsmpm::load_study_text(text, BSMPM_SOURCE_DIR "/scenes/studies/fuzz.toml");
   } catch (const bsmpm::Error&) {
   }
   return 0;

@@ -1,5 +1,5 @@
 // OUT/plan.json: a validated study expanded into its cases, for the Snakemake workflow
-// (scripts/study/Snakefile) and the scripts that aggregate and plot (docs/studies.md).
+// (scripts/workflow/Snakefile) and the scripts that aggregate and plot (docs/studies.md).
 #pragma once
 
 #include <string>
