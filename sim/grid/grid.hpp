@@ -29,16 +29,25 @@ struct Grid {
 
   Grid() = default;
   Grid(Vec2 origin, Vec2 cell_size, int cells_x, int cells_y)
-      : bx(origin.x(), cell_size.x(), cells_x), by(origin.y(), cell_size.y(), cells_y) {}
+      : bx(origin.x(), cell_size.x(), cells_x), by(origin.y(), cell_size.y(), cells_y) {
+    for (int i = 0; i < nx(); ++i) greville_x_.push_back(bx.greville(i));
+    for (int j = 0; j < ny(); ++j) greville_y_.push_back(by.greville(j));
+  }
 
   int nx() const { return bx.basis_count(); }
   int ny() const { return by.basis_count(); }
   int node_count() const { return nx() * ny(); }
   int index(int i, int j) const { return i * ny() + j; }
-  Vec2 greville(int i, int j) const { return {bx.greville(i), by.greville(j)}; }
+  Vec2 greville(int i, int j) const { return {greville_x_[i], greville_y_[j]}; }
+  // The control points' abscissae per axis, xi_i and eta_j (the transfers read them per particle).
+  const double* greville_x() const { return greville_x_.data(); }
+  const double* greville_y() const { return greville_y_.data(); }
   Vec2 origin() const { return {bx.origin(), by.origin()}; }
   Vec2 extent_max() const { return {bx.end(), by.end()}; }
   Vec2 cell_size() const { return {bx.cell_size(), by.cell_size()}; }
+
+ private:
+  std::vector<double> greville_x_, greville_y_;
 };
 
 // One velocity field on the grid: a body, or a group of bodies sharing a field.

@@ -1,14 +1,20 @@
 // One explicit BSMPM step, MUSL variant (docs/method.md §2; paper eqs. 5-14), for spline order P.
-// The step reads as its phases; effects (gravity, walls, contact, ...) plug into the hooks
-// declared in effect.hpp and are absent when the scene does not ask for them.
+// The step reads as its passes (step/passes/, one unit each); effects (gravity, walls,
+// contact, ...) plug into the hooks declared in effect.hpp and are absent when the scene does
+// not ask for them.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "step/dilatation_projection.hpp"
 #include "step/effect.hpp"
+#include "step/passes/basis_weights.hpp"
+#include "step/passes/particle_shifting.hpp"
+#include "step/passes/particle_sort.hpp"
+#include "step/passes/particle_to_grid.hpp"
+#include "step/passes/stress_update.hpp"
 #include "step/simulation.hpp"
 #include "step/step_state.hpp"
 
@@ -41,39 +47,11 @@ class BsmpmSimulation final : public Simulation {
 
   // Exposed for the unit tests of the transfers.
   StepState<P>& state() { return st_; }
-  void compute_weights();
-  void particle_to_grid();
+  void compute_weights() { basis_.compute(st_); }
+  void particle_to_grid() { ParticleToGrid<P>::scatter(st_, affine()); }
 
  private:
-  template <bool kMassGradient, bool kAffine, bool kVolume>
-  void scatter_body(std::size_t b);
-  void sort_particles_by_cell();
-  void update_grid_velocity(double dt);
-  template <bool kAffine>
-  void move_particles_and_remap_momentum(double dt);
-  void update_remap_velocity();
-  struct DeformationUpdate {
-    double max_signal_speed = 0.0;  // largest c + |v|: bounds the next time step
-    bool invalid = false;           // some particle's state is non-finite or its density out of range
-  };
-  // One body's particles [begin, end) and the remapped velocities of its grid field.
-  struct BodyParticles {
-    std::size_t index;
-    long begin, end;
-    const std::vector<Vec2>& velocity;
-  };
-  DeformationUpdate update_deformation_and_stress(double dt);
-  DeformationUpdate update_body(const BodyParticles& body, const WeaklyCompressibleFluid& fluid, double dt);
-  DeformationUpdate update_body(const BodyParticles& body, const ElasticSolid& solid, double dt);
-  DeformationUpdate update_body(const BodyParticles& body, const RigidBody& rigid, double dt);
-  [[noreturn]] void throw_instability() const;
-  bool density_in_range(double J) const { return J >= j_min_ && J <= j_max_; }
-  // Least-squares smoothing of the fluid's J through the control points (see the .cpp).
-  void add_volume_moments(std::uint32_t p);
-  void fit_volume_ratio(std::size_t body_index);
-  double fitted_volume_ratio(std::size_t p) const;
-  void clear_volume_moments(std::size_t body_index);
-  void clear_grid();
+  bool affine() const { return settings_.velocity_update == SolverSettings::VelocityUpdate::kApic; }
   void constrain(VelocityPhase phase);
 
   StepState<P> st_;
@@ -81,20 +59,13 @@ class BsmpmSimulation final : public Simulation {
   std::vector<std::unique_ptr<Effect<P>>> effects_;
   std::vector<Effect<P>*> force_hooks_, velocity_hooks_;
   std::vector<std::unique_ptr<Probe>> probes_;
-  static constexpr int kMoments = 9;
-  std::vector<double> smoothing_moments_;  // per control point, only with FluidVolume::kSmoothed
-  std::vector<double> greville_x_, greville_y_;
-  Vec2 affine_floor_ = Vec2::Zero();        // APIC: floor of D_p's diagonal [m2]
-  Vec2 inverse_cell_ = Vec2::Zero();        // 1 / h per axis
-  std::vector<double> inverse_integral_x_, inverse_integral_y_;  // 1 / integral of N_i (particle shifting)
-  std::vector<Mat2> gradient_scratch_;
-  std::vector<std::uint32_t> sort_key_, sort_order_, sort_start_;  // sort_particles_by_cell()
-  std::vector<int> column_scratch_;  // compute_weights(): each particle's first column
-  Particles::PermuteScratch permute_scratch_;
-  DilatationProjection<P> projection_;      // only with FluidVolume::kProjected
-  std::vector<double> increment_scratch_;
+  // The passes that keep state from one step to the next (scratch arrays, grids of their own).
+  ParticleSort sort_;
+  BasisWeights<P> basis_;
+  std::optional<ParticleShifting<P>> shifting_;  // only with solver.particle_shifting > 0
+  StressUpdate<P> stress_;
+  Vec2 affine_floor_ = Vec2::Zero();  // APIC: floor of D_p's diagonal [m2]
   double max_signal_speed_ = 0.0;
-  double j_min_ = 0.0, j_max_ = 0.0;  // the density range as volume ratios J = rho0 / rho
   SimulationStats stats_;
 };
 

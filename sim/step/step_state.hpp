@@ -9,7 +9,7 @@
 #include "particles/particles.hpp"
 #include "step/phase_timer.hpp"
 #include "step/simulation.hpp"
-#include "step/strip_schedule.hpp"
+#include "step/passes/strip_schedule.hpp"
 
 namespace bsmpm {
 

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "step/bsmpm_simulation.hpp"
-#include "step/grid_to_particle.hpp"
+#include "step/passes/grid_to_particle.hpp"
 
 using namespace bsmpm;
 

@@ -1,0 +1,76 @@
+// Particle shifting (docs/method.md §10; after Lind et al. 2012, J. Comput. Phys. 231:1499,
+// carried to the grid): phi_I = sum_p S_Ip V_p / integral(N_I) is the volume fraction at the
+// control point (1 where particles fill the support evenly); a fluid particle inside the
+// water (phi >= 0.95 at it) drifts by -D h^2 grad phi, towards where particles are too sparse.
+// Near a free surface or a solid phi drops below the threshold and nothing moves, so the
+// surface is not smeared out.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "step/step_state.hpp"
+
+namespace bsmpm {
+
+template <int P>
+class ParticleShifting {
+ public:
+  ParticleShifting() = default;
+  // The volume fraction an even lattice of particles (the seeding's, `spacing`) gives at each
+  // control point is 1 inside but not next to a wall, where the clamped functions are
+  // lopsided: phi is measured against it, so that the seeded state does not drift.
+  ParticleShifting(const Grid<P>& grid, const Vec2& spacing, double coefficient)
+      : inverse_integral_x_(lattice_fraction_inverse(grid.bx, spacing.x())),
+        inverse_integral_y_(lattice_fraction_inverse(grid.by, spacing.y())),
+        scale_(coefficient * grid.cell_size().minCoeff() * grid.cell_size().minCoeff()) {}
+
+  // The shift -D h^2 grad phi at the particle, from the volumes of its grid field; zero where
+  // phi < 0.95 (near a free surface or a solid).
+  Vec2 shift(const ParticleWeights<P>& w, const std::vector<double>& volume, int ny) const {
+    // phi_I = V_I / (int N_i int N_j) factors per axis: the sums over c first, then over a.
+    const std::vector<double>& inv_iy = inverse_integral_y_;
+    std::array<double, P + 1> wy, gy;
+    for (int c = 0; c <= P; ++c) {
+      wy[c] = w.wy[c] * inv_iy[w.j0 + c];
+      gy[c] = w.gy[c] * inv_iy[w.j0 + c];
+    }
+    double phi = 0.0;
+    Vec2 grad = Vec2::Zero();
+    for (int a = 0; a <= P; ++a) {
+      const double* const V = volume.data() + (w.i0 + a) * ny + w.j0;
+      double along = 0.0, across = 0.0;  // sum_c N_c V / int N_j, sum_c N_c' V / int N_j
+      for (int c = 0; c <= P; ++c) {
+        along += wy[c] * V[c];
+        across += gy[c] * V[c];
+      }
+      const double ix = inverse_integral_x_[w.i0 + a];
+      phi += w.wx[a] * ix * along;
+      grad += ix * Vec2(w.gx[a] * along, w.wx[a] * across);
+    }
+    if (phi < 0.95) return Vec2::Zero();
+    return -scale_ * grad;
+  }
+
+  std::size_t bytes() const { return heap_bytes(inverse_integral_x_) + heap_bytes(inverse_integral_y_); }
+
+ private:
+  // 1 / (sum_k N_i(x_k) dx), over an even lattice x_k = origin + (k + 1/2) dx covering the axis.
+  static std::vector<double> lattice_fraction_inverse(const ClampedBSpline<P>& basis, double dx) {
+    std::vector<double> sum(basis.basis_count(), 0.0);
+    const int count = static_cast<int>(std::lround((basis.end() - basis.origin()) / dx));
+    for (int k = 0; k < count; ++k) {
+      typename ClampedBSpline<P>::Weights w, dw;
+      const int first = basis.evaluate(basis.origin() + (k + 0.5) * dx, w, dw);
+      for (int a = 0; a <= P; ++a) sum[first + a] += w[a] * dx;
+    }
+    for (double& v : sum) v = v > 0.0 ? 1.0 / v : 0.0;
+    return sum;
+  }
+
+  std::vector<double> inverse_integral_x_, inverse_integral_y_;  // 1 / integral of N_i
+  double scale_ = 0.0;                                           // D h_min^2
+};
+
+}  // namespace bsmpm
