@@ -15,7 +15,7 @@ void print_scene_summary(std::FILE* out, const SceneDescription& scene, const Si
                g.cells_y + g.order);
   for (const Body& b : sim.bodies())
     std::fprintf(out, "body     %-12s %-8s %8zu particles (%.3g x %.3g mm spacing), grid field %d\n", b.name.c_str(),
-                 kind_of(b.material), b.size(), b.spacing.x() * 1e3, b.spacing.y() * 1e3, b.layer);
+                 kind_name(b.material), b.size(), b.spacing.x() * 1e3, b.spacing.y() * 1e3, b.layer);
   const double h_min = std::min(g.cell_size.x(), g.cell_size.y());
   if (scene.time.mode == TimeStepSettings::Mode::kFixed)
     std::fprintf(out, "time     0 to %g s, fixed dt = %.3g s; frames every %g s\n", scene.time.end, scene.time.dt,

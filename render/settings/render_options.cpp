@@ -55,7 +55,7 @@ RenderOptions read_render_table(TableReader& t) {
     o.splat_scale = t.number("splat_scale", Range::closed(kMinSplatScale, kMaxSplatScale));
   if (t.has("colorbar")) o.colorbar = color_bar_placement_named(t.choice("colorbar", kPlacements));
   if (t.has("fps")) o.fps = static_cast<int>(t.integer("fps", 1, kMaxFps));
-  if (t.has("slowmo")) o.slowmo = t.number("slowmo", {0.0, 1e6, true, false});
+  if (t.has("slowmo")) o.slowmo = t.number("slowmo", Range{Bound::exclusive(0.0), Bound::inclusive(1e6)});
   if (auto view = t.optional_table("view")) {
     WorldRect r{view->vec2("min"), view->vec2("max")};
     if (!(r.max.x() > r.min.x() && r.max.y() > r.min.y())) view->fail("max", "must exceed view.min in both x and y");

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/boundaries.hpp"
-#include "parameters/scene_tables.hpp"
+#include "step/effects/scene_tables.hpp"
 
 namespace bsmpm {
 

@@ -2,19 +2,6 @@
 
 namespace bsmpm {
 
-namespace {
-
-// Stored energy per unit reference volume of one particle (docs/method.md §4, §5).
-struct StoredEnergy {
-  const Particles& ps;
-  std::size_t p;
-  double operator()(const WeaklyCompressibleFluid& f) const { return f.stored_energy(ps.J[p]); }
-  double operator()(const ElasticSolid& s) const { return s.stored_energy(ps.F[p]); }
-  double operator()(const RigidBody&) const { return 0.0; }
-};
-
-}  // namespace
-
 ConservationTotals measure_conservation(const Simulation& sim, const Vec2& gravity) {
   ConservationTotals c;
   c.time = sim.time();
@@ -23,6 +10,10 @@ ConservationTotals measure_conservation(const Simulation& sim, const Vec2& gravi
   const Particles& ps = sim.particles();
   for (const Body& body : sim.bodies()) {
     if (is_rigid(body.material)) continue;
+    // Stored energy per unit reference volume of one particle (docs/method.md §4, §5).
+    auto stored_energy = [&](std::size_t p) {
+      return std::visit([&](const auto& m) { return m.stored_energy(ps.F[p], ps.J[p]); }, body.material);
+    };
     for (std::size_t p = body.begin; p < body.end; ++p) {
       const double m = ps.mass[p];
       c.mass += m;
@@ -30,7 +21,7 @@ ConservationTotals measure_conservation(const Simulation& sim, const Vec2& gravi
       c.kinetic += 0.5 * m * ps.v[p].squaredNorm();
       c.gravitational -= m * gravity.dot(ps.x[p]);
       c.work_gravity += m * gravity.dot(ps.x[p] - ps.x0[p]);
-      c.elastic += ps.volume0[p] * std::visit(StoredEnergy{ps, p}, body.material);
+      c.elastic += ps.volume0[p] * stored_energy(p);
     }
   }
   return c;

@@ -25,19 +25,13 @@ std::string utc_now() {
 
 void write_body_attributes(hid_t g, const Body& b) {
   h5::set_attribute(g, "name", b.name);
-  h5::set_attribute(g, "type", std::string(kind_of(b.material)));
+  h5::set_attribute(g, "type", std::string(kind_name(b.material)));
   h5::set_attribute(g, "first", static_cast<long>(b.begin));
   h5::set_attribute(g, "count", static_cast<long>(b.size()));
   h5::set_attribute(g, "spacing", std::vector<double>{b.spacing.x(), b.spacing.y()});
   h5::set_attribute(g, "density", density_of(b.material));
-  if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&b.material)) {
-    h5::set_attribute(g, "bulk_modulus", f->bulk_modulus);
-    h5::set_attribute(g, "viscosity", f->viscosity);
-    h5::set_attribute(g, "equation_of_state", std::string(f->eos == EquationOfState::kTait ? "tait" : "linear"));
-  } else if (const auto* e = std::get_if<ElasticSolid>(&b.material)) {
-    h5::set_attribute(g, "youngs_modulus", e->youngs_modulus);
-    h5::set_attribute(g, "poisson_ratio", e->poisson_ratio);
-  }
+  for (const MaterialAttribute& a : std::visit([](const auto& m) { return m.attributes(); }, b.material))
+    std::visit([&](const auto& value) { h5::set_attribute(g, a.name.c_str(), value); }, a.value);
 }
 
 // The field's dataset under `group`: one row per particle, in id order (the order of every

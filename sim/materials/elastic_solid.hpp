@@ -6,18 +6,38 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 
+#include "core/format.hpp"
 #include "core/types.hpp"
+#include "materials/material_attribute.hpp"
+#include "parameters/table_reader.hpp"
 
 namespace bsmpm {
 
 enum class ElasticModel { kNeoHookean, kSaintVenantKirchhoff };
 
+// [materials.NAME] type = "elastic", density, youngs_modulus, poisson_ratio = 0 (in [0, 0.5)),
+// elastic_model = "neo_hookean" | "saint_venant_kirchhoff".
 struct ElasticSolid {
+  static constexpr const char* kType = "elastic";
+  static constexpr MaterialKind kKind = MaterialKind::kElastic;
+
   double density = 1000.0;  // rho0 [kg/m3]
   double youngs_modulus = 1.0e6;
   double poisson_ratio = 0.0;
   ElasticModel model = ElasticModel::kNeoHookean;
+
+  static ElasticSolid read(TableReader& t) {
+    ElasticSolid e;
+    e.density = t.number("density", Range::positive());
+    e.youngs_modulus = t.number("youngs_modulus", Range::positive());
+    e.poisson_ratio = t.number_or("poisson_ratio", 0.0, Range{Bound::inclusive(0.0), Bound::exclusive(0.5)});
+    e.model = t.choice_or("elastic_model", "neo_hookean", {"neo_hookean", "saint_venant_kirchhoff"}) == "neo_hookean"
+                  ? ElasticModel::kNeoHookean
+                  : ElasticModel::kSaintVenantKirchhoff;
+    return e;
+  }
 
   double lame_lambda() const {
     const double E = youngs_modulus, nu = poisson_ratio;
@@ -28,6 +48,19 @@ struct ElasticSolid {
   // P-wave speed sqrt((lambda + 2 mu) / rho) in the current configuration.
   double wave_speed(double J) const {
     return std::sqrt((lame_lambda() + 2.0 * shear_modulus()) * J / density);
+  }
+
+  // Fastest signal c + |v| a particle moving at `speed` carries (CFL condition).
+  double signal_speed(double J, double speed) const { return wave_speed(J) + speed; }
+
+  std::string describe(const std::string& body) const {
+    return format("elastic stress [%s]: %s, E = %g Pa, nu = %g, rho0 = %g kg/m3", body.c_str(),
+                  model == ElasticModel::kNeoHookean ? "Neo-Hookean" : "Saint Venant-Kirchhoff", youngs_modulus,
+                  poisson_ratio, density);
+  }
+
+  MaterialAttributes attributes() const {
+    return {{"youngs_modulus", youngs_modulus}, {"poisson_ratio", poisson_ratio}};
   }
 
   // Strain energy per unit reference volume, whose derivative gives stress() (plane strain,
@@ -42,6 +75,7 @@ struct ElasticSolid {
     const Mat2 E = 0.5 * (F.transpose() * F - Mat2::Identity());
     return 0.5 * lambda * E.trace() * E.trace() + mu * E.squaredNorm();
   }
+  double stored_energy(const Mat2& F, double) const { return stored_energy(F); }
 
   Mat2 stress(const Mat2& F) const {
     const double J = F.determinant();

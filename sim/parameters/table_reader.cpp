@@ -112,17 +112,17 @@ double TableReader::checked(std::string_view key, const toml::node& node, Range 
   if (!value) throw SceneError(location_of(node), dotted(key), "expected a number, got " + type_name(node));
   const double x = *value;
   if (!std::isfinite(x)) throw SceneError(location_of(node), dotted(key), "must be finite");
-  const bool below = r.min_open ? !(x > r.min) : !(x >= r.min);
-  const bool above = r.max_open ? !(x < r.max) : !(x <= r.max);
+  const bool below = r.min.included ? !(x >= r.min.value) : !(x > r.min.value);
+  const bool above = r.max.included ? !(x <= r.max.value) : !(x < r.max.value);
   if (below || above) {
     std::string want;
-    if (std::isfinite(r.min) && std::isfinite(r.max))
-      want = "in " + std::string(r.min_open ? "(" : "[") + format_number(r.min) + ", " + format_number(r.max) +
-             (r.max_open ? ")" : "]");
-    else if (std::isfinite(r.min))
-      want = std::string(r.min_open ? "> " : ">= ") + format_number(r.min);
+    if (std::isfinite(r.min.value) && std::isfinite(r.max.value))
+      want = "in " + std::string(r.min.included ? "[" : "(") + format_number(r.min.value) + ", " +
+             format_number(r.max.value) + (r.max.included ? "]" : ")");
+    else if (std::isfinite(r.min.value))
+      want = std::string(r.min.included ? ">= " : "> ") + format_number(r.min.value);
     else
-      want = std::string(r.max_open ? "< " : "<= ") + format_number(r.max);
+      want = std::string(r.max.included ? "<= " : "< ") + format_number(r.max.value);
     throw SceneError(location_of(node), dotted(key), "must be " + want + " (got " + format_number(x) + ")");
   }
   return x;

@@ -24,14 +24,23 @@ toml::table parse_toml(const std::string& text, const std::string& path);
 SourceLocation location_of(const toml::node& node);
 SourceLocation location_of(const toml::key& key);
 
+// One end of a Range: its value and whether the value itself is allowed.
+struct Bound {
+  double value;
+  bool included;
+  static constexpr Bound inclusive(double v) { return {v, true}; }
+  static constexpr Bound exclusive(double v) { return {v, false}; }
+};
+
+// The values a number may take, e.g. Range{Bound::exclusive(0.0), Bound::inclusive(1.0)}
+// for (0, 1]; an end left out is unbounded.
 struct Range {
-  double min = -std::numeric_limits<double>::infinity();
-  double max = std::numeric_limits<double>::infinity();
-  bool min_open = false;  // min excluded
-  bool max_open = false;
-  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
-  static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
-  static Range closed(double a, double b) { return {a, b, false, false}; }
+  Bound min = Bound::inclusive(-std::numeric_limits<double>::infinity());
+  Bound max = Bound::inclusive(std::numeric_limits<double>::infinity());
+  static constexpr Range positive() { return {Bound::exclusive(0.0)}; }
+  static constexpr Range non_negative() { return {Bound::inclusive(0.0)}; }
+  static constexpr Range non_positive() { return {.max = Bound::inclusive(0.0)}; }
+  static constexpr Range closed(double a, double b) { return {Bound::inclusive(a), Bound::inclusive(b)}; }
 };
 
 class TableReader {

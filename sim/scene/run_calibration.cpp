@@ -14,7 +14,7 @@ RateFeatures rate_features(const SceneDescription& scene, const RunCost& cost) {
   bool fluid = false, elastic = false;
   for (const BodyDescription& b : scene.bodies) {
     fluid = fluid || is_fluid(b.material);
-    elastic = elastic || std::holds_alternative<ElasticSolid>(b.material);
+    elastic = elastic || is_elastic(b.material);
   }
   f.materials = elastic && fluid ? "elastic+fluid" : elastic ? "elastic" : fluid ? "fluid" : "rigid";
   using FluidVolume = SolverSettings::FluidVolume;

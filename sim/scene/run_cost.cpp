@@ -43,13 +43,6 @@ int max_components(unsigned use) {
   return most;
 }
 
-// The wave speed of a material at rest (docs/method.md §7), 0 for a rigid body.
-double wave_speed(const Material& m) {
-  if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&m)) return f->sound_speed(1.0);
-  if (const auto* e = std::get_if<ElasticSolid>(&m)) return e->wave_speed(1.0);
-  return 0.0;
-}
-
 }  // namespace
 
 RunCost predict_run_cost(const SceneDescription& scene) {
@@ -98,12 +91,13 @@ RunCost predict_run_cost(const SceneDescription& scene) {
     if (is_fluid(b.material)) top = std::max(top, bounding_box(b.shape).max.y());
   if (gravity && top > scene.domain_min.y()) c.flow_speed = std::sqrt(2.0 * gravity->g * (top - scene.domain_min.y()));
   for (const BodyDescription& b : scene.bodies) {
-    const double own = is_rigid(b.material) ? std::get<RigidBody>(b.material).velocity.norm() : b.velocity.norm();
-    const double speed = wave_speed(b.material) + own + (is_fluid(b.material) ? c.flow_speed : 0.0);
+    // The wave speed at rest (docs/method.md §7) and the body's initial speed; a rigid body's
+    // own prescribed speed instead.
+    const double speed = signal_speed(b.material, 1.0, b.velocity.norm()) + (is_fluid(b.material) ? c.flow_speed : 0.0);
     if (speed > c.signal_speed) {
       c.signal_speed = speed;
       c.stiffest_body = b.name;
-      c.wave_speed = wave_speed(b.material);
+      c.wave_speed = wave_speed(b.material, 1.0);
     }
   }
   const double h_min = std::min(h.x(), h.y());

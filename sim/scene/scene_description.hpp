@@ -3,7 +3,6 @@
 // where seeding decides: a shape too small to hold a particle at the grid's resolution.
 #pragma once
 
-#include <any>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +13,7 @@
 #include "materials/material.hpp"
 #include "particles/shapes.hpp"
 #include "probes/probe.hpp"
+#include "scene/effect_registry.hpp"
 #include "step/simulation.hpp"
 #include "step/time_step.hpp"
 
@@ -64,16 +64,14 @@ struct SceneDescription {
 
   std::vector<BodyDescription> bodies;
   std::vector<ProbeDescription> probes;
-  // The parameters of each optional effect the scene asks for (gravity, walls, contacts,
-  // ...), as the effect read them (scene/effect_registry.hpp).
-  std::vector<std::any> effects;
+  // The parameters of each optional effect (gravity, walls, contacts, ...), as the effect
+  // read them, each absent when the scene does not ask for it (scene/effect_registry.hpp).
+  EffectParameters effects;
 
   // The parameters of the effect that reads a T, or nullptr when the scene does not ask for it.
   template <class T>
   const T* effect_parameters() const {
-    for (const std::any& e : effects)
-      if (const T* p = std::any_cast<T>(&e)) return p;
-    return nullptr;
+    return effects.get<T>();
   }
 
   // Cells per axis and the actual cell size (the domain is split into whole cells).

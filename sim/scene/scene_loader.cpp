@@ -6,7 +6,7 @@
 #include <regex>
 #include <sstream>
 
-#include "parameters/scene_tables.hpp"
+#include "step/effects/scene_tables.hpp"
 #include "parameters/table_reader.hpp"
 #include "scene/effect_registry.hpp"
 #include "scene/overrides.hpp"
@@ -49,49 +49,10 @@ void read_time(TableReader t, SceneDescription& s) {
     if (t.has("max_dt")) t.fail("max_dt", "only applies to the adaptive step (time.cfl)");
   } else {
     s.time.mode = TimeStepSettings::Mode::kCfl;
-    s.time.cfl = t.number_or("cfl", 0.3, {0.0, 1.0, true, false});
+    s.time.cfl = t.number_or("cfl", 0.3, Range{Bound::exclusive(0.0), Bound::inclusive(1.0)});
     s.time.max_dt = t.number_or("max_dt", 1.0e-3, Range::positive());
   }
   t.finish();
-}
-
-Material read_material(TableReader t) {
-  const std::string type = t.choice("type", {"fluid", "elastic", "rigid"});
-  Material m;
-  if (type == "fluid") {
-    WeaklyCompressibleFluid f;
-    f.density = t.number("density", Range::positive());
-    if (t.has("bulk_modulus") == t.has("sound_speed"))
-      t.fail(t.has("bulk_modulus") ? "sound_speed" : "bulk_modulus",
-             "give exactly one of bulk_modulus [Pa] and sound_speed [m/s]");
-    if (t.has("bulk_modulus")) f.bulk_modulus = t.number("bulk_modulus", Range::positive());
-    else {
-      const double c = t.number("sound_speed", Range::positive());
-      f.bulk_modulus = f.density * c * c;
-    }
-    f.viscosity = t.number_or("viscosity", 0.0, Range::non_negative());
-    f.eos = t.choice_or("equation_of_state", "tait", {"tait", "linear"}) == "tait" ? EquationOfState::kTait
-                                                                                   : EquationOfState::kLinear;
-    if (f.eos == EquationOfState::kTait) f.tait_gamma = t.number_or("tait_gamma", 7.0, {1.0, 20.0, true, false});
-    if (t.has("min_pressure")) f.min_pressure = t.number("min_pressure", {-1e300, 0.0, false, false});
-    m = f;
-  } else if (type == "elastic") {
-    ElasticSolid e;
-    e.density = t.number("density", Range::positive());
-    e.youngs_modulus = t.number("youngs_modulus", Range::positive());
-    e.poisson_ratio = t.number_or("poisson_ratio", 0.0, {0.0, 0.5, false, true});
-    e.model = t.choice_or("elastic_model", "neo_hookean", {"neo_hookean", "saint_venant_kirchhoff"}) == "neo_hookean"
-                  ? ElasticModel::kNeoHookean
-                  : ElasticModel::kSaintVenantKirchhoff;
-    m = e;
-  } else {
-    RigidBody r;
-    r.density = t.number_or("density", 1000.0, Range::positive());
-    r.velocity = t.vec2_or("velocity", Vec2::Zero());
-    m = r;
-  }
-  t.finish();
-  return m;
 }
 
 Rectangle read_rectangle(TableReader& t) {

@@ -16,22 +16,7 @@ namespace bsmpm {
 namespace {
 
 std::string describe_material(const Body& b) {
-  if (const auto* f = std::get_if<WeaklyCompressibleFluid>(&b.material)) {
-    const std::string viscosity =
-        f->viscosity > 0.0 ? format("viscosity %g Pa s", f->viscosity) : "inviscid (no viscous term)";
-    const std::string cut_off =
-        f->has_tension_cut_off()
-            ? format(", tension cut-off p >= %g Pa (J held at %.6g)", f->min_pressure, f->largest_volume_ratio())
-            : "";
-    return format("fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s%s", b.name.c_str(),
-                  f->eos == EquationOfState::kTait ? "Tait" : "linear", f->bulk_modulus, f->sound_speed(1.0),
-                  f->density, viscosity.c_str(), cut_off.c_str());
-  }
-  if (const auto* e = std::get_if<ElasticSolid>(&b.material))
-    return format("elastic stress [%s]: %s, E = %g Pa, nu = %g, rho0 = %g kg/m3", b.name.c_str(),
-                  e->model == ElasticModel::kNeoHookean ? "Neo-Hookean" : "Saint Venant-Kirchhoff",
-                  e->youngs_modulus, e->poisson_ratio, e->density);
-  return "";  // rigid bodies carry no stress; the rigid motion effect describes them
+  return std::visit([&](const auto& material) { return material.describe(b.name); }, b.material);
 }
 
 }  // namespace
@@ -67,14 +52,14 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
   // free parameter (it is infinitely heavy in the contact) and must not move the cut-off.
   double lightest = std::numeric_limits<double>::infinity(), lightest_rigid = lightest;
   for (const Body& b : st_.bodies) {
-    double& bound = std::holds_alternative<RigidBody>(b.material) ? lightest_rigid : lightest;
+    double& bound = is_rigid(b.material) ? lightest_rigid : lightest;
     for (std::size_t p = b.begin; p < b.end; ++p) bound = std::min(bound, st_.particles.mass[p]);
   }
   st_.mass_cutoff = settings_.mass_cutoff_ratio * (std::isfinite(lightest) ? lightest : lightest_rigid);
   for (const Body& b : st_.bodies)
     for (std::size_t p = b.begin; p < b.end; ++p)
       max_signal_speed_ = std::max(
-          max_signal_speed_, std::visit(SignalSpeed{st_.particles.J[p], st_.particles.v[p].norm()}, b.material));
+          max_signal_speed_, signal_speed(b.material, st_.particles.J[p], st_.particles.v[p].norm()));
   sort_.sort(st_);
 }
 

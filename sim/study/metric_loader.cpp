@@ -62,7 +62,7 @@ MetricSpec read_metric(TableReader& t, const SensorModel& defaults) {
     if (m.type == Type::kImpactTime) m.threshold = t.number("threshold");
     m.sensor = defaults;
     if (filtered(m.type)) {
-      m.sensor.rate = t.number_or("rate", m.sensor.rate, {0.0, 1e9, true, false});
+      m.sensor.rate = t.number_or("rate", m.sensor.rate, Range::positive());
       m.sensor.window = t.number_or("window", m.sensor.window, Range::closed(0.0, 10.0));
     }
   }

@@ -96,7 +96,7 @@ Axis read_axis(TableReader& t, const std::vector<Axis>& earlier) {
 
 SensorModel read_sensor(TableReader t) {
   SensorModel s;
-  s.rate = t.number_or("rate", s.rate, {0.0, 1e9, true, false});
+  s.rate = t.number_or("rate", s.rate, Range::positive());
   s.window = t.number_or("window", s.window, Range::closed(0.0, 10.0));
   t.finish();
   return s;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/format.hpp"
-#include "parameters/scene_tables.hpp"
+#include "step/effects/scene_tables.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "core/format.hpp"
-#include "parameters/scene_tables.hpp"
+#include "step/effects/scene_tables.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {

@@ -10,7 +10,7 @@
 #include <optional>
 
 #include "core/format.hpp"
-#include "parameters/scene_tables.hpp"
+#include "step/effects/scene_tables.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {
@@ -21,7 +21,7 @@ struct LocalDampingParameters {
 
   static std::optional<LocalDampingParameters> read(SceneTables& scene) {
     if (!scene.solver) return std::nullopt;
-    const double alpha = scene.solver->number_or("local_damping", 0.0, {0.0, 1.0, false, true});
+    const double alpha = scene.solver->number_or("local_damping", 0.0, Range{Bound::inclusive(0.0), Bound::exclusive(1.0)});
     if (!(alpha > 0.0)) return std::nullopt;
     return LocalDampingParameters{alpha};
   }

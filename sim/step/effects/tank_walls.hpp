@@ -22,7 +22,7 @@
 
 #include "core/boundaries.hpp"
 #include "core/format.hpp"
-#include "parameters/scene_tables.hpp"
+#include "step/effects/scene_tables.hpp"
 #include "step/effect.hpp"
 
 namespace bsmpm {

@@ -19,15 +19,6 @@
 
 namespace bsmpm {
 
-// Fastest signal c + |v| a particle of this material can carry (CFL condition).
-struct SignalSpeed {
-  double J;
-  double speed;
-  double operator()(const WeaklyCompressibleFluid& f) const { return f.sound_speed(J) + speed; }
-  double operator()(const ElasticSolid& s) const { return s.wave_speed(J) + speed; }
-  double operator()(const RigidBody& r) const { return r.velocity.norm(); }
-};
-
 template <int P>
 class StressUpdate {
  public:
@@ -73,7 +64,7 @@ class StressUpdate {
     const auto& ps = st.particles;
     for (std::size_t p = 0; p < ps.size(); ++p) {
       const Body& body = st.bodies[ps.body[p]];
-      if (std::holds_alternative<RigidBody>(body.material)) continue;
+      if (is_rigid(body.material)) continue;
       std::string field;
       if (!ps.x[p].allFinite()) field = "position is not finite";
       else if (!ps.v[p].allFinite()) field = "velocity is not finite";
@@ -149,7 +140,7 @@ class StressUpdate {
     }
     // With a tension cut-off, water does not stretch past the J at which it reaches it
     // (method.md §4): a particle there keeps its volume, as water in a thinning sheet does.
-    const double j_cut = mat.largest_volume_ratio();
+    const std::optional<double> j_cut = mat.largest_volume_ratio();
     auto run = [&](auto viscous) {
 #pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
       for (long p = body.begin; p < body.end; ++p) {
@@ -164,11 +155,11 @@ class StressUpdate {
           J = ps.J[p] * (Mat2::Identity() + dt * L).determinant();
           ps.J[p] = J;
         }
-        if (J > j_cut) ps.J[p] = J = j_cut;
+        if (j_cut && J > *j_cut) ps.J[p] = J = *j_cut;
         const double pressure = mat.pressure(J);
         ps.pressure[p] = pressure;
         ps.stress[p] = mat.template stress<decltype(viscous)::value>(pressure, L);
-        body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
+        body_speed = std::max(body_speed, mat.signal_speed(J, ps.v[p].norm()));
         body_invalid = body_invalid || !density_in_range(J) || !std::isfinite(pressure) || !finite(ps.v[p]) ||
                        !finite(ps.x[p]);
       }
@@ -196,7 +187,7 @@ class StressUpdate {
       const Mat2 sigma = mat.stress(F);
       ps.stress[p] = sigma;
       ps.pressure[p] = -0.5 * sigma.trace();
-      body_speed = std::max(body_speed, SignalSpeed{J, ps.v[p].norm()}(mat));
+      body_speed = std::max(body_speed, mat.signal_speed(J, ps.v[p].norm()));
       body_invalid = body_invalid || !density_in_range(J) || !sigma.allFinite() || !finite(ps.v[p]) ||
                      !finite(ps.x[p]);
     }
@@ -205,7 +196,7 @@ class StressUpdate {
 
   // Rigid body: no deformation, no stress; its prescribed speed still bounds the time step.
   Result update_body(StepState<P>&, const BodyParticles&, const RigidBody& mat, double) {
-    return {SignalSpeed{1.0, 0.0}(mat), false};
+    return {mat.signal_speed(1.0, 0.0), false};
   }
 
   SolverSettings::FluidVolume fluid_volume_ = SolverSettings::FluidVolume::kParticle;
