@@ -1,4 +1,4 @@
-// Impact pressure at a wall (docs/method.md §10, docs/validation.md "Impact pressure"):
+// Impact pressure at a wall (docs/method.md §10, docs/validation.md "Jet on a wall"):
 // a plane jet against the steady stagnation flow it must form, and the Lobovsky dam break's
 // first impact, whose wall probes must not read tension.
 #include <catch2/catch.hpp>
@@ -54,7 +54,7 @@ TEST_CASE("A plane jet on a wall: stagnation pressure and momentum flux", "[phys
   // On the axis. Measured 0.70 p0 (APIC + smoothed J + shifting, the shipped options); the
   // solver of the first release read 0.57 p0, FLIP with 5 % PIC 0.84 p0 but swinging by
   // 0.29 p0. The wall's reaction force is within 2 % of rho U^2 b in every variant on a
-  // larger domain (docs/validation.md, "Impact pressure"; here R_floor reads 1.11 rho U^2 b
+  // larger domain (docs/validation.md, "Jet on a wall"; here R_floor reads 1.11 rho U^2 b
   // over t = 0.06-0.12, 1.03 without shifting, next test): what is left of the deficit is how
   // the particles next to the wall carry pressure. Bound: the measured value less 0.08 p0,
   // about one standard deviation of the axis signal.
