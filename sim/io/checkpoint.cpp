@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 #include "core/version.hpp"
 #include "io/hdf5.hpp"
-#include "io/particle_fields.hpp"
+#include "io/particle_datasets.hpp"
 
 namespace bsmpm {
 
@@ -49,26 +49,9 @@ ConstraintWork read_work(hid_t g, const std::string& prefix) {
 
 // The state fields of the table, in slot order, exactly as stored (float64, uint16, uint32).
 void write_particles(hid_t group, const Particles& ps) {
-  const std::size_t n = ps.size();
-  std::vector<double> values;
-  for (const ParticleField& field : particle_fields()) {
-    if (!field.has(kCheckpointState)) continue;
-    const std::size_t c = static_cast<std::size_t>(field.components);
-    values.resize(n * c);
-    for (std::size_t p = 0; p < n; ++p) field.get(ps, p, &values[c * p]);
-    const std::string name(field.name);
-    if (field.type == FieldType::kFloat64) {
-      h5::write_dataset(group, name, values.data(), n, c);
-    } else if (field.type == FieldType::kUInt16 && c == 1) {
-      const std::vector<std::uint16_t> v(values.begin(), values.end());
-      h5::write_dataset(group, name, v.data(), n);
-    } else if (field.type == FieldType::kUInt32 && c == 1) {
-      const std::vector<std::uint32_t> v(values.begin(), values.end());
-      h5::write_dataset(group, name, v.data(), n);
-    } else {
-      throw std::logic_error("io/particle_fields.cpp: no checkpoint type for particle field '" + name + "'");
-    }
-  }
+  std::vector<double> buffer;
+  for (const ParticleField& field : particle_fields())
+    if (field.has(kCheckpointState)) write_particle_dataset(group, field, ps, nullptr, buffer);
 }
 
 Particles read_particles(hid_t group, std::size_t n) {
@@ -78,16 +61,7 @@ Particles read_particles(hid_t group, std::size_t n) {
     if (!field.has(kCheckpointState)) continue;
     const std::string name(field.name);
     if (!h5::exists(group, name)) throw IoError("the checkpoint lacks the particle field '" + name + "'");
-    std::vector<double> values;
-    if (field.type == FieldType::kFloat64) {
-      values = h5::read_doubles(group, name);
-    } else if (field.type == FieldType::kUInt16) {
-      const auto v = h5::read_uint16(group, name);
-      values.assign(v.begin(), v.end());
-    } else {
-      const auto v = h5::read_uint32(group, name);
-      values.assign(v.begin(), v.end());
-    }
+    const std::vector<double> values = read_particle_dataset(group, field);
     const std::size_t c = static_cast<std::size_t>(field.components);
     if (values.size() != n * c)
       throw IoError("the checkpoint's particle field '" + name + "' holds " + std::to_string(values.size()) +

@@ -10,7 +10,7 @@
 #include "core/format.hpp"
 #include "core/version.hpp"
 #include "diagnostics/conservation.hpp"
-#include "io/particle_fields.hpp"
+#include "io/particle_datasets.hpp"
 
 namespace bsmpm {
 
@@ -37,20 +37,7 @@ void write_body_attributes(hid_t g, const Body& b) {
 // The field's dataset under `group`: one row per particle, in id order (the order of every
 // frame); `buffer` is scratch space.
 void write_particle_field(hid_t group, const ParticleField& field, const Simulation& sim, std::vector<double>& buffer) {
-  const Particles& ps = sim.particles();
-  const auto& slot_of_id = sim.index_of_id();
-  const std::size_t n = ps.size(), components = static_cast<std::size_t>(field.components);
-  buffer.resize(n * components);
-  for (std::size_t k = 0; k < n; ++k) field.get(ps, slot_of_id[k], &buffer[components * k]);
-  const std::string name(field.name);
-  if (field.type == FieldType::kFloat64) {
-    h5::write_dataset(group, name, buffer.data(), n, components);
-  } else if (field.type == FieldType::kUInt16 && components == 1) {
-    const std::vector<std::uint16_t> values(buffer.begin(), buffer.end());
-    h5::write_dataset(group, name, values.data(), n);
-  } else {
-    throw std::logic_error("io/particle_fields.cpp: no dataset type for particle field '" + name + "'");
-  }
+  write_particle_dataset(group, field, sim.particles(), &sim.index_of_id(), buffer);
 }
 
 }  // namespace
@@ -297,8 +284,7 @@ void RunWriter::write_xdmf() const {
       auto data_item = [&](const ParticleField& field) {
         x << "     <DataItem Dimensions=\"" << n;
         if (field.components > 1) x << " " << field.components;
-        x << "\" NumberType=\"" << (field.type == FieldType::kUInt16 ? "UInt\" Precision=\"2" : "Float\" Precision=\"8")
-          << "\" Format=\"HDF\">" << (field.has(kInFrames) ? path : std::string("run.h5:/particles/")) << field.name
+        x << "\" " << xdmf_number_type(field) << " Format=\"HDF\">" << (field.has(kInFrames) ? path : std::string("run.h5:/particles/")) << field.name
           << "</DataItem>\n";
       };
       for (const ParticleField& field : particle_fields())
