@@ -114,7 +114,7 @@ int command_movie(const std::vector<std::string>& argv) {
     if (interrupted()) {
       progress.finish();
       std::fprintf(stderr, "bsmpm: interrupted; no movie written\n");
-      return kInterrupted;  // the encoder removes its temporary file
+      return interrupted_exit_status();  // the encoder removes its temporary file
     }
     // A run frame held for several movie frames is drawn once.
     if (schedule[k] != rendered_frame) {

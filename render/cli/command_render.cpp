@@ -160,7 +160,7 @@ int command_render(const std::vector<std::string>& argv) {
                 done == 1 ? "" : "s", width, height);
   if (interrupted()) {
     std::fprintf(stderr, "bsmpm: interrupted after %zu of %zu images\n", done, frames.size());
-    return kInterrupted;
+    return interrupted_exit_status();
   }
   return kOk;
 }

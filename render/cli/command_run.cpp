@@ -55,12 +55,15 @@ const char* kHelp =
     "  --resume DIR       continue the run in DIR from its checkpoint: frames and probe rows\n"
     "                     written after it are replaced; the result is the same, bit for bit,\n"
     "                     as a run never interrupted\n"
-    "  --force            replace the run already in DIR\n"
+    "  --force            replace the run already in DIR; and start even when the predicted\n"
+    "                     output does not fit on DIR's disk (the run then stops, resumable,\n"
+    "                     when the disk is full)\n"
     "  --quiet            no progress line\n"
     "\n"
     "exit status: 0 done, 2 bad scene or usage or a run too large, 3 numerical instability\n"
-    "(frames kept, the failing state in DIR/checkpoint_failed.h5), 130 interrupted (frames\n"
-    "kept, resumable), 1 other failure\n";
+    "(frames kept, the failing state in DIR/checkpoint_failed.h5), 4 out of space (frames\n"
+    "kept; resumable when a checkpoint fit), 130 interrupted by Ctrl-C and 143 by SIGTERM\n"
+    "(frames kept, resumable), 1 other failure\n";
 
 // Refuses to overwrite another run; with --force removes the files a run writes.
 void prepare_directory(const fs::path& dir, bool force) {
@@ -165,7 +168,8 @@ int command_run(const std::vector<std::string>& argv) {
   // too large for this machine, leaves nothing.
   const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"), {render::render_scene_extension()});
   const RunCost cost = predict_run_cost(scene);
-  const auto warnings = check_run_cost(scene, cost, machine_resources(dir.string()), schedule.enabled());
+  const auto warnings =
+      check_run_cost(scene, cost, machine_resources(dir.string()), schedule.enabled(), args.flag("--force"));
   auto sim = build_simulation(scene);
   prepare_directory(dir, args.flag("--force"));
   print_scene_summary(stdout, scene, *sim, threads);

@@ -6,8 +6,9 @@
 
 namespace bsmpm::cli {
 
-// Exit codes shared by all commands.
-enum ExitCode { kOk = 0, kFailure = 1, kBadInput = 2, kUnstable = 3, kInterrupted = 130 };
+// Exit codes shared by all commands (the table: bsmpm --help, README.md). A command stopped
+// by a signal exits 128 + its number (cli/interruption.hpp).
+enum ExitCode { kOk = 0, kFailure = 1, kBadInput = 2, kUnstable = 3, kOutOfSpace = 4, kInterrupted = 130 };
 
 int command_run(const std::vector<std::string>& args);
 int command_check(const std::vector<std::string>& args);

@@ -6,10 +6,10 @@
 namespace bsmpm::cli {
 
 namespace {
-std::atomic<bool> g_interrupted{false};
+std::atomic<int> g_signal{0};
 
 extern "C" void on_interruption(int sig) {
-  g_interrupted.store(true);
+  g_signal.store(sig);
   std::signal(sig, SIG_DFL);
 }
 }  // namespace
@@ -19,6 +19,8 @@ void catch_interruptions() {
   std::signal(SIGTERM, on_interruption);
 }
 
-bool interrupted() { return g_interrupted.load(); }
+bool interrupted() { return g_signal.load() != 0; }
+
+int interrupted_exit_status() { return 128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT); }
 
 }  // namespace bsmpm::cli

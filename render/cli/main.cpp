@@ -1,7 +1,8 @@
 // bsmpm: B-spline material point simulator for dam-break flows against obstacles.
-#include <cstdio>
 #include <unistd.h>
 
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "core/version.hpp"
+#include "io/hdf5.hpp"
 
 namespace {
 
@@ -58,6 +60,10 @@ const char* kHelp =
 
 int main(int argc, char** argv) {
   using namespace bsmpm;
+  h5::leave_failed_objects_at_exit();  // before any other HDF5 call (io/hdf5.hpp)
+  // A file reaching the size limit (ulimit -f) is a write that fails with EFBIG, handled as a
+  // full disk, not a signal that kills the program.
+  std::signal(SIGXFSZ, SIG_IGN);
   default_to_short_spin(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
@@ -92,6 +98,9 @@ int main(int argc, char** argv) {
   } catch (const NumericalError& e) {
     std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
     return cli::kUnstable;
+  } catch (const OutOfSpaceError& e) {
+    std::fprintf(stderr, "bsmpm: error: out of space: %s\n", e.what());
+    return cli::kOutOfSpace;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
     return cli::kFailure;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <thread>
 
@@ -10,6 +11,7 @@
 #include "cli/interruption.hpp"
 #include "cli/progress.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/version.hpp"
 #include "io/run_summary.hpp"
 
@@ -50,17 +52,39 @@ int drive_run(RunContext& ctx, RunLoopState start) {
   };
   RunLoopState last = start;  // the loop's state after the last completed step
   double last_time = sim.time();
+  // The state checkpoint.h5 holds: a resumed run's starting point until it writes another.
+  double checkpoint_time = start.started && fs::exists(checkpoint_path(ctx.dir)) ? sim.time() : std::nan("");
   auto checkpoint = [&](const fs::path& path, const RunLoopState& loop) {
     write_checkpoint(path.string(), ctx.checkpoint_scene, sim, loop, writer.state(sim), wall());
   };
+  // Why the run stops for lack of room, found before anything was half-written: the run
+  // stops after this step as if interrupted.
+  std::string out_of_space;
+  auto note_out_of_space = [&](const OutOfSpaceError& e) {
+    if (!e.clean()) throw;
+    out_of_space = e.what();
+  };
 
   RunHooks hooks;
-  hooks.stop = interrupted;
+  hooks.stop = [&] { return interrupted() || !out_of_space.empty(); };
   hooks.on_frame = [&](const Simulation& s, double dt) { writer.write_frame(s, dt); };
   hooks.after_step = [&](const Simulation& s, const RunLoopState& loop) {
     last = loop;
     last_time = s.time();
-    if (ctx.schedule.due(s)) checkpoint(checkpoint_path(ctx.dir), loop);
+    try {
+      if (ctx.schedule.due(s)) {
+        checkpoint(checkpoint_path(ctx.dir), loop);
+        checkpoint_time = s.time();
+      }
+    } catch (const OutOfSpaceError& e) {
+      note_out_of_space(e);
+      return;
+    }
+    try {
+      writer.keep_room(s);
+    } catch (const OutOfSpaceError& e) {
+      note_out_of_space(e);
+    }
   };
   double last_line = -1e9;
   if (!ctx.quiet)
@@ -78,15 +102,23 @@ int drive_run(RunContext& ctx, RunLoopState start) {
   auto end_line = [&] {
     if (tty && !ctx.quiet) std::fputc('\n', stderr);
   };
-  auto write_failure_summary = [&](const std::string& status, int exit_status) {
-    RunSummary s = summarize(ctx, sim.step_count(), wall());
+  auto write_summary = [&](const std::string& status, int exit_status, long steps) {
+    RunSummary s = summarize(ctx, steps, wall());
     s.status = status;
     s.exit_status = exit_status;
-    write_run_summary(ctx.dir.string(), s);
+    s.checkpoint_time = checkpoint_time;
+    return s;
   };
   RunOutcome outcome;
+  outcome.state = start;
   try {
-    outcome = run_to_end(sim, ctx.scene.time, ctx.scene.frame_interval, hooks, start);
+    writer.keep_room(sim);  // the first frame (or, resumed, the next one)
+  } catch (const OutOfSpaceError& e) {
+    note_out_of_space(e);
+  }
+  try {
+    if (out_of_space.empty()) outcome = run_to_end(sim, ctx.scene.time, ctx.scene.frame_interval, hooks, start);
+    else outcome.interrupted = true;
   } catch (const NumericalError& e) {
     // The failing state as the last frame (to see where) and as a checkpoint (to load it);
     // checkpoint.h5, if any, stays the last good state.
@@ -95,7 +127,7 @@ int drive_run(RunContext& ctx, RunLoopState start) {
     writer.write_frame(sim, sim.time() - last_time);
     checkpoint(failed_checkpoint_path(ctx.dir), last);
     writer.finish(status, sim, 0.0);
-    write_failure_summary(status, kUnstable);
+    write_run_summary(ctx.dir.string(), write_summary(status, kUnstable, sim.step_count()));
     std::fprintf(stderr,
                  "bsmpm: error: %s\nbsmpm: the %d frames written, the last one of the failing state, are in %s; that "
                  "state is also in %s\n",
@@ -103,24 +135,43 @@ int drive_run(RunContext& ctx, RunLoopState start) {
                  failed_checkpoint_path(ctx.dir).string().c_str());
     return kUnstable;
   } catch (const std::exception& e) {
-    // A failed write (disk full, ...): the file says so instead of "running"; the frames
-    // flushed before it stay readable.
+    // A write that failed half-way (an I/O error; or a full disk the room kept did not
+    // foresee): the files say so where they still can; main reports the error.
     end_line();
+    const bool full = dynamic_cast<const OutOfSpaceError*>(&e) != nullptr;
+    const std::string status = std::string("failed: ") + (full ? "out of space: " : "") + e.what();
     try {
-      writer.finish(std::string("failed: ") + e.what(), sim, 0.0);
-      write_failure_summary(std::string("failed: ") + e.what(), kFailure);
+      writer.finish(status, sim, 0.0);
     } catch (const std::exception&) {
-      // The file itself is what failed; main reports the first error.
+      // The file itself is what failed.
+    }
+    try {
+      write_run_summary(ctx.dir.string(), write_summary(status, full ? kOutOfSpace : kFailure, sim.step_count()));
+    } catch (const std::exception&) {
     }
     throw;
   }
   end_line();
-  if (outcome.interrupted) checkpoint(checkpoint_path(ctx.dir), outcome.state);
-  writer.finish(outcome.interrupted ? "interrupted" : "completed", sim, outcome.last_dt);
+  std::string checkpoint_note;  // why the stop wrote no checkpoint
+  // Out of space: the room kept for the next frame goes to the checkpoint (tried again when
+  // the periodic one did not fit).
+  if (!out_of_space.empty()) writer.shrink_room(sim);
+  if (outcome.interrupted) {
+    try {
+      checkpoint(checkpoint_path(ctx.dir), outcome.state);
+      checkpoint_time = sim.time();
+    } catch (const OutOfSpaceError& e) {
+      if (!e.clean()) throw;
+      checkpoint_note = e.what();
+    }
+  }
+  const bool full = !out_of_space.empty();
+  const int exit_status = full ? kOutOfSpace : outcome.interrupted ? interrupted_exit_status() : kOk;
+  const std::string status =
+      full ? "failed: out of space: " + out_of_space : outcome.interrupted ? "interrupted" : "completed";
+  writer.finish(status, sim, outcome.last_dt);
   {
-    RunSummary s = summarize(ctx, outcome.state.steps, wall());
-    s.status = outcome.interrupted ? "interrupted" : "completed";
-    s.exit_status = outcome.interrupted ? kInterrupted : kOk;
+    RunSummary s = write_summary(status, exit_status, outcome.state.steps);
     s.min_dt = outcome.min_dt;
     s.max_dt = outcome.max_dt;
     write_run_summary(ctx.dir.string(), s);
@@ -142,12 +193,35 @@ int drive_run(RunContext& ctx, RunLoopState start) {
               ctx.dir.string().c_str());
   for (const auto& p : sim.probes()) std::printf(", %s/%s.csv", ctx.dir.string().c_str(), p->name().c_str());
   std::printf(", %s/conservation.csv, %s/summary.json\n", ctx.dir.string().c_str(), ctx.dir.string().c_str());
+  std::fflush(stdout);
+  const std::string resume = "bsmpm run --resume " + ctx.dir.string();
+  if (full) {
+    std::fprintf(stderr, "bsmpm: error: out of space: %s\n", out_of_space.c_str());
+    const int frames = writer.frames_written();
+    std::fprintf(stderr,
+                 "bsmpm: the run stopped at t = %.6g s (step %ld) before writing anything it had no room for: %s, the "
+                 "probe series and the conservation rows are whole and readable in %s\n",
+                 sim.time(), sim.step_count(),
+                 frames == 0 ? "no frame written"
+                             : format("its %d frame%s (the last at t = %.6g s)", frames, frames == 1 ? "" : "s",
+                                      writer.last_frame_time()).c_str(),
+                 ctx.dir.string().c_str());
+    if (checkpoint_note.empty())
+      std::fprintf(stderr, "bsmpm: make room, then `%s` continues from t = %.6g s (the checkpoint it wrote)\n",
+                   resume.c_str(), checkpoint_time);
+    else if (std::isfinite(checkpoint_time))
+      std::fprintf(stderr, "bsmpm: no room for a checkpoint of that state (%s); make room, then `%s` continues from "
+                   "the last one, at t = %.6g s\n", checkpoint_note.c_str(), resume.c_str(), checkpoint_time);
+    else
+      std::fprintf(stderr, "bsmpm: no room for a checkpoint (%s): the run cannot be resumed\n", checkpoint_note.c_str());
+    return kOutOfSpace;
+  }
   if (outcome.interrupted) {
     std::fprintf(stderr,
-                 "bsmpm: interrupted at t = %.5f s (step %ld); the frames written so far are kept, and "
-                 "bsmpm run --resume %s continues from here\n",
-                 sim.time(), sim.step_count(), ctx.dir.string().c_str());
-    return kInterrupted;
+                 "bsmpm: interrupted at t = %.5f s (step %ld); the frames written so far are kept, and %s continues "
+                 "from here\n",
+                 sim.time(), sim.step_count(), resume.c_str());
+    return exit_status;
   }
   return kOk;
 }

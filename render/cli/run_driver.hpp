@@ -1,8 +1,10 @@
 // Drives a prepared run to its end (a fresh run or a resumed one): progress, frames,
 // checkpoints, and how it ends. Completed: the last frame, summary.json, the checkpoint
-// removed. Ctrl-C or SIGTERM: a checkpoint of the state reached, exit 130. A numerical
-// instability: a final frame and a checkpoint of the failing state (checkpoint_failed.h5;
-// checkpoint.h5 keeps the last good one), exit 3.
+// removed. Ctrl-C or SIGTERM: a checkpoint of the state reached, exit 130 or 143. No room on
+// the disk for what the next step may write: the same stop, the checkpoint when it fits,
+// exit 4 (docs/output-format.md, "A full disk"). A numerical instability: a final frame and
+// a checkpoint of the failing state (checkpoint_failed.h5; checkpoint.h5 keeps the last good
+// one), exit 3.
 #pragma once
 
 #include <cmath>
@@ -34,7 +36,8 @@ inline std::filesystem::path failed_checkpoint_path(const std::filesystem::path&
   return dir / "checkpoint_failed.h5";
 }
 
-// Returns the exit status (kOk, kInterrupted, kUnstable); other failures throw.
+// Returns the exit status (kOk, 128 + the signal, kUnstable, kOutOfSpace); other failures
+// throw.
 int drive_run(RunContext& ctx, RunLoopState start);
 
 }  // namespace bsmpm::cli

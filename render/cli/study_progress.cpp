@@ -39,12 +39,13 @@ CaseState StudyProgress::state(const std::string& key) const {
   const fs::path dir = cases_ / key;
   if (fs::exists(dir / "metrics.json")) return CaseState::kDone;
   if (written_since_start(key, "failed")) {
-    // The marker holds "exit status N"; 130 is a run stopped by Ctrl-C: it resumes.
+    // The marker holds "exit status N"; 130 and 143 are a run stopped by Ctrl-C or SIGTERM
+    // (Slurm's scancel, a job's time limit): it resumes.
     std::ifstream marker(dir / "failed");
     std::string word1, word2;
     int status = 0;
     marker >> word1 >> word2 >> status;
-    return status == 130 ? CaseState::kInterrupted : CaseState::kFailed;
+    return status == 130 || status == 143 ? CaseState::kInterrupted : CaseState::kFailed;
   }
   if (written_since_start(key, "started")) return CaseState::kRunning;
   return CaseState::kWaiting;

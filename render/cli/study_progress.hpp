@@ -1,6 +1,6 @@
 // The state of a running study as its case directories show it (docs/studies.md,
 // "Progress"): done (metrics.json), failed (a `failed` marker written by this invocation;
-// interrupted if it says exit status 130), running (a `started` marker written by it),
+// interrupted if it says exit status 130 or 143), running (a `started` marker written by it),
 // waiting; and an ETA from the mean wall time of the finished cases. "Written by this
 // invocation" means absent or different when the object was made: the markers' times are
 // snapshotted then, so no clock resolution or second-long slack decides what was reused.

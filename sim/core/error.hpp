@@ -49,6 +49,19 @@ class IoError : public Error {
   using Error::Error;
 };
 
+// There is no room left for the output: the disk (or the user's quota) is full, or the file
+// reached the size limit of the process (ulimit -f). `clean()`: found before anything was
+// written (io/output_space.hpp reserves the room first), so every file is whole; otherwise a
+// write failed half-way.
+class OutOfSpaceError : public IoError {
+ public:
+  OutOfSpaceError(const std::string& what, bool clean) : IoError(what), clean_(clean) {}
+  bool clean() const { return clean_; }
+
+ private:
+  bool clean_;
+};
+
 // The simulation became numerically invalid (non-finite state, particle lost).
 class NumericalError : public Error {
  public:

@@ -1,6 +1,7 @@
 // printf-style formatting into a std::string, for messages and descriptions of any length
 // (g++ 12 has no std::format). The compiler checks the arguments against the format. And
-// the shortest round-trip text of a double, for files other programs read back.
+// the shortest round-trip text of a double, for files other programs read back; sizes in bytes
+// for people.
 #pragma once
 
 #include <charconv>
@@ -26,6 +27,17 @@ __attribute__((format(printf, 1, 2))) inline std::string format(const char* patt
 inline std::string shortest(double x) {
   char digits[32];  // to_chars writes at most 24 characters for a double
   return std::string(digits, std::to_chars(digits, digits + sizeof digits, x).ptr);
+}
+
+// "1.5 GiB", "320 MiB", "512 B": bytes in binary units, three significant digits.
+inline std::string format_bytes(double bytes) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB"};
+  int u = 0;
+  while (bytes >= 1024.0 && u < 5) {
+    bytes /= 1024.0;
+    ++u;
+  }
+  return format(u == 0 || bytes >= 100.0 ? "%.0f %s" : "%.3g %s", bytes, units[u]);
 }
 
 }  // namespace bsmpm

@@ -3,13 +3,16 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 
 #include "core/error.hpp"
 #include "core/version.hpp"
 #include "io/hdf5.hpp"
+#include "io/output_space.hpp"
 #include "io/particle_datasets.hpp"
 
 namespace bsmpm {
@@ -71,13 +74,28 @@ Particles read_particles(hid_t group, std::size_t n) {
   return ps;
 }
 
+// An upper bound of the checkpoint's size: the state fields and the probes' rows (its raw
+// data, exactly), the scene's text and the attributes and object headers (h5stat: 14.4 KiB of
+// metadata for the Lobovsky tank's checkpoint with its 3.6 KiB of scene text).
+std::uint64_t checkpoint_bytes(const CheckpointScene& scene, const Simulation& sim) {
+  std::uint64_t bytes = 24 * 1024 + scene.text.size() + scene.command_line.size();
+  for (const std::string& o : scene.overrides) bytes += o.size() + 256;
+  for (const ParticleField& field : particle_fields())
+    if (field.has(kCheckpointState)) bytes += sim.particles().size() * field_value_bytes(field);
+  for (const auto& probe : sim.probes()) bytes += probe->data().size() * sizeof(double) + 1024;
+  return bytes;
+}
+
 // Data and metadata on the disk before the rename makes the file the checkpoint.
 void sync_file(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY);
   if (fd < 0) throw IoError(path + ": cannot open to sync");
-  const int status = ::fsync(fd);
+  const int status = ::fsync(fd), error_number = errno;
   ::close(fd);
-  if (status != 0) throw IoError(path + ": sync failed");
+  if (status == 0) return;
+  const std::string message = path + ": sync failed: " + std::strerror(error_number);
+  if (is_out_of_space(error_number)) throw OutOfSpaceError(message, false);
+  throw IoError(message);
 }
 
 }  // namespace
@@ -85,9 +103,12 @@ void sync_file(const std::string& path) {
 void write_checkpoint(const std::string& path, const CheckpointScene& scene, const Simulation& sim,
                       const RunLoopState& loop, const RunWriterState& writer, double wall_seconds) {
   const std::string tmp = path + ".tmp";
+  FileRoom room;  // outlives the file: HDF5 writes into it until the file is closed
   try {
     {
       h5::Handle f = h5::create_file(tmp);
+      room = FileRoom(tmp, path);
+      room.keep(checkpoint_bytes(scene, sim), "the checkpoint");
       h5::set_attribute(f, "format", std::string("bsmpm-checkpoint"));
       h5::set_attribute(f, "format_version", kFormatVersion);
       h5::set_attribute(f, "program_version", std::string(kVersion));
@@ -144,15 +165,19 @@ void write_checkpoint(const std::string& path, const CheckpointScene& scene, con
         h5::set_attribute(g, "count", static_cast<long>(sim.particles().size()));
         write_particles(g, sim.particles());
       }
-      if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) throw IoError(tmp + ": flush failed");
+      h5::flush(f, tmp);
     }
+    room.release();
     sync_file(tmp);
     std::filesystem::rename(tmp, path);
   } catch (const std::exception& e) {
+    // No half checkpoint is left: the last whole one, if any, stays the one to resume from.
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
     const std::string what = e.what();
+    const auto* full = dynamic_cast<const OutOfSpaceError*>(&e);
     if (what.rfind(path, 0) == 0) throw;
+    if (full) throw OutOfSpaceError(path + ": " + what, full->clean());
     throw IoError(path + ": " + what);
   }
 }

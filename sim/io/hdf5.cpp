@@ -1,15 +1,36 @@
 #include "io/hdf5.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 
 #include "core/error.hpp"
+#include "io/output_space.hpp"
 
 namespace bsmpm::h5 {
 
 namespace {
+
+herr_t find_errno(unsigned, const H5E_error2_t* entry, void* out) {
+  // The sec2 driver's read, write and truncate errors say "errno = N, error message = ...".
+  if (const char* at = entry->desc ? std::strstr(entry->desc, "errno = ") : nullptr)
+    *static_cast<int*>(out) = std::atoi(at + 8);
+  return 0;
+}
+
+// The error of the HDF5 call that just failed: an OutOfSpaceError when the file system said
+// that there is no room (the write failed half-way, so not clean), else an IoError.
+[[noreturn]] void fail(const std::string& what) {
+  int error_number = 0;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, find_errno, &error_number);
+  std::string message = "HDF5: " + what + " failed";
+  if (error_number != 0) message += std::string(": ") + std::strerror(error_number);
+  if (is_out_of_space(error_number)) throw OutOfSpaceError(message, false);
+  throw IoError(message);
+}
+
 void check(herr_t status, const std::string& what) {
-  if (status < 0) throw IoError("HDF5: " + what + " failed");
+  if (status < 0) fail(what);
 }
 
 herr_t collect_name(hid_t, const char* name, const H5L_info_t*, void* out) {
@@ -29,7 +50,7 @@ void write_typed(hid_t parent, const std::string& name, const T* data, std::size
 }  // namespace
 
 Handle::Handle(hid_t id, const std::string& what) : id_(id) {
-  if (id < 0) throw IoError("HDF5: " + what + " failed");
+  if (id < 0) fail(what);
 }
 
 Handle::~Handle() {
@@ -46,6 +67,10 @@ Handle& Handle::operator=(Handle&& o) noexcept {
 }
 
 void quiet_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+void leave_failed_objects_at_exit() { H5dont_atexit(); }
+
+void flush(hid_t file, const std::string& path) { check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing " + path); }
 
 Handle create_file(const std::string& path) {
   quiet_errors();
@@ -235,8 +260,9 @@ std::vector<std::uint32_t> read_uint32(hid_t parent, const std::string& name) {
   return read_integers<std::uint32_t>(parent, name, H5T_NATIVE_UINT32);
 }
 
-RowAppender::RowAppender(hid_t parent, const std::string& name, std::size_t cols) : cols_(cols), name_(name) {
-  const hsize_t dims[2] = {0, cols}, max_dims[2] = {H5S_UNLIMITED, cols}, chunk[2] = {1024, cols};
+RowAppender::RowAppender(hid_t parent, const std::string& name, std::size_t cols, std::size_t chunk_rows)
+    : cols_(cols), chunk_rows_(chunk_rows), name_(name) {
+  const hsize_t dims[2] = {0, cols}, max_dims[2] = {H5S_UNLIMITED, cols}, chunk[2] = {chunk_rows, cols};
   Handle space(H5Screate_simple(2, dims, max_dims), "dataspace for " + name);
   Handle props(H5Pcreate(H5P_DATASET_CREATE), "dataset properties");
   check(H5Pset_chunk(props, 2, chunk), "chunking " + name);
@@ -257,9 +283,20 @@ RowAppender RowAppender::reopen(hid_t parent, const std::string& name, std::size
                   std::to_string(rows) + " expected");
   a.cols_ = dims[1];
   a.rows_ = rows;
+  {
+    Handle props(H5Dget_create_plist(a.dataset_), "dataset properties");
+    hsize_t chunk[2] = {0, 0};
+    if (H5Pget_chunk(props, 2, chunk) == 2) a.chunk_rows_ = chunk[0];
+  }
   const hsize_t cut[2] = {rows, dims[1]};
   check(H5Dset_extent(a.dataset_, cut), "cutting " + name);
   return a;
+}
+
+std::size_t RowAppender::growth_bound(std::size_t count) const {
+  if (count == 0) return 0;
+  const std::size_t first = rows_ / chunk_rows_, last = (rows_ + count - 1) / chunk_rows_;
+  return (last - first + 1) * chunk_rows_ * cols_ * sizeof(double) + 1024;  // + its B-tree entries
 }
 
 void RowAppender::append(const double* rows, std::size_t count) {

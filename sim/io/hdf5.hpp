@@ -28,8 +28,19 @@ class Handle {
   hid_t id_ = H5I_INVALID_HID;
 };
 
-// Silences HDF5's own error printing; errors surface as exceptions instead.
+// Silences HDF5's own error printing; errors surface as exceptions instead (an
+// OutOfSpaceError when the file system had no room for a write).
 void quiet_errors();
+
+// A program calls this first, before any other HDF5 call: HDF5 then leaves its clean-up at
+// exit to the operating system. HDF5 1.10 keeps the identifier of an object whose close
+// failed (a file whose last write found the disk full) with the object half torn down; its
+// clean-up at exit closes it again and crashes (SIGSEGV in H5_term_library). Everything the
+// program opens is closed by its Handle before exit; only such a failed object is left.
+void leave_failed_objects_at_exit();
+
+// H5Fflush of the whole file; throws naming `path`.
+void flush(hid_t file, const std::string& path);
 
 Handle create_file(const std::string& path);
 Handle open_file(const std::string& path, bool writable = false);
@@ -62,15 +73,20 @@ std::vector<std::uint32_t> read_uint32(hid_t parent, const std::string& name);
 class RowAppender {
  public:
   RowAppender() = default;
-  RowAppender(hid_t parent, const std::string& name, std::size_t cols);
+  // `chunk_rows`: rows per chunk, the unit in which the file grows (a whole chunk is
+  // allocated at the first write into it).
+  RowAppender(hid_t parent, const std::string& name, std::size_t cols, std::size_t chunk_rows = 1024);
   // The existing dataset `name`, cut to its first `rows` rows (a resumed run continues there).
   static RowAppender reopen(hid_t parent, const std::string& name, std::size_t rows);
   void append(const double* rows, std::size_t count);
   std::size_t rows() const { return rows_; }
+  std::size_t cols() const { return cols_; }
+  // Bytes the file may grow by when `count` more rows are appended (the chunks they start).
+  std::size_t growth_bound(std::size_t count) const;
 
  private:
   Handle dataset_;
-  std::size_t cols_ = 0, rows_ = 0;
+  std::size_t cols_ = 0, rows_ = 0, chunk_rows_ = 1024;
   std::string name_;
 };
 

@@ -33,6 +33,11 @@ void write_particle_dataset(hid_t group, const ParticleField& field, const Parti
   }
 }
 
+std::size_t field_value_bytes(const ParticleField& field) {
+  const std::size_t bytes = field.type == FieldType::kUInt16 ? 2 : field.type == FieldType::kUInt32 ? 4 : 8;
+  return bytes * static_cast<std::size_t>(field.components);
+}
+
 std::string xdmf_number_type(const ParticleField& field) {
   switch (field.type) {
     case FieldType::kFloat64: return "NumberType=\"Float\" Precision=\"8\"";

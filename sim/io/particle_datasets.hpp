@@ -19,6 +19,9 @@ namespace bsmpm {
 void write_particle_dataset(hid_t group, const ParticleField& field, const Particles& particles,
                             const std::vector<std::uint32_t>* slot_of_row, std::vector<double>& buffer);
 
+// Bytes of one particle's values of `field` as stored.
+std::size_t field_value_bytes(const ParticleField& field);
+
 // The XDMF description of that dataset's numbers: NumberType="..." Precision="...".
 std::string xdmf_number_type(const ParticleField& field);
 

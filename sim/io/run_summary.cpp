@@ -33,6 +33,7 @@ void write_run_summary(const std::string& dir, const RunSummary& s) {
       .field("min_dt", s.min_dt)
       .field("max_dt", s.max_dt)
       .field("frames", s.frames)
+      .field("checkpoint_time", s.checkpoint_time)
       .field("program_version", s.program_version)
       .field("git_revision", s.git_revision)
       .end_object();
@@ -83,6 +84,7 @@ RunSummary read_run_summary(const std::string& dir) {
   s.min_dt = number("min_dt");
   s.max_dt = number("max_dt");
   s.frames = static_cast<int>(number("frames"));
+  if (values.count("checkpoint_time")) s.checkpoint_time = number("checkpoint_time");  // absent before it existed
   s.program_version = text_of("program_version");
   s.git_revision = text_of("git_revision");
   return s;

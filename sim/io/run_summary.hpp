@@ -25,6 +25,7 @@ struct RunSummary {
   double min_dt = std::nan("");    // s; unknown (null) when the run failed
   double max_dt = std::nan("");
   int frames = 0;
+  double checkpoint_time = std::nan("");  // s: the state DIR/checkpoint.h5 holds; none (null) without one
   std::string program_version;
   std::string git_revision;
 };

@@ -1,6 +1,8 @@
 #include "io/run_writer.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -34,6 +36,31 @@ void write_body_attributes(hid_t g, const Body& b) {
     std::visit([&](const auto& value) { h5::set_attribute(g, a.name.c_str(), value); }, a.value);
 }
 
+// What the room kept for the next writes adds to the particle fields and probe rows (measured
+// with h5stat and the CSV files: a frame's group with its 3 attributes and 6 datasets holds
+// about 4 KiB of metadata; status, steps and clamped_positions about 1 KiB).
+constexpr std::uint64_t kFrameMetadataBytes = 16 * 1024;
+constexpr std::uint64_t kFinishBytes = 16 * 1024;
+constexpr std::uint64_t kCsvCharsPerValue = 18;  // "%.9g" and its comma; %.17g needs 25
+constexpr std::uint64_t kCsvTrailerBytes = 1024;  // the comment line of a run that stopped
+// Conservation rows come one a frame: small chunks, so that a short run's file is not mostly
+// an empty chunk (1024 rows of 14 columns would be 112 KiB).
+constexpr std::size_t kConservationChunkRows = 64;
+
+// Bytes of one particle's values of every field with `use`, as stored.
+std::uint64_t particle_bytes(unsigned use) {
+  std::uint64_t bytes = 0;
+  for (const ParticleField& f : particle_fields())
+    if (f.use & use) bytes += field_value_bytes(f);
+  return bytes;
+}
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t c = 0; c < items.size(); ++c) out += (c ? "," : "") + items[c];
+  return out;
+}
+
 // The field's dataset under `group`: one row per particle, in id order (the order of every
 // frame); `buffer` is scratch space.
 void write_particle_field(hid_t group, const ParticleField& field, const Simulation& sim, std::vector<double>& buffer) {
@@ -46,6 +73,12 @@ RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, co
     : directory_(directory), h5_path_(directory + "/run.h5"), xdmf_path_(directory + "/run.xdmf"),
       gravity_(prov.gravity) {
   file_ = h5::create_file(h5_path_);
+  h5_room_ = FileRoom(h5_path_);
+  particle_count_ = sim.particles().size();
+  frame_bytes_ = particle_count_ * particle_bytes(kInFrames);
+  h5_room_.keep(particle_count_ * particle_bytes(kInRunHeader) + 2 * prov.scene_text.size() +
+                    prov.effective_scene.size() + 64 * 1024,
+                "the run's header");
   h5::set_attribute(file_, "format", std::string("bsmpm-run"));
   h5::set_attribute(file_, "format_version", 1L);
   h5::set_attribute(file_, "program_version", std::string(kVersion));
@@ -87,7 +120,6 @@ RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, co
     }
   }
   {
-    particle_count_ = sim.particles().size();
     h5::Handle g = h5::create_group(file_, "particles");
     std::vector<double> buffer;
     for (const ParticleField& field : particle_fields())
@@ -100,36 +132,51 @@ RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, co
       const auto cols = probe->columns();
       probe_sets_.emplace_back(g, probe->name(), cols.size());
       h5::Handle set(H5Dopen2(g, probe->name().c_str(), H5P_DEFAULT), "probe dataset");
-      std::string joined;
-      for (std::size_t c = 0; c < cols.size(); ++c) joined += (c ? "," : "") + cols[c];
-      h5::set_attribute(set, "columns", joined);
+      h5::set_attribute(set, "columns", joined(cols));
       h5::set_attribute(set, "description", probe->describe());
-      open_csv(directory_ + "/" + probe->name() + ".csv", probe->describe(), cols);
+      probe_csv_.push_back(create_csv(directory_ + "/" + probe->name() + ".csv", probe->describe(), cols));
       probe_rows_done_.push_back(0);
     }
   }
   {
     const auto& cols = conservation_columns();
-    conservation_set_ = h5::RowAppender(file_, "conservation", cols.size());
+    conservation_set_ = h5::RowAppender(file_, "conservation", cols.size(), kConservationChunkRows);
     h5::Handle set(H5Dopen2(file_, "conservation", H5P_DEFAULT), "conservation dataset");
-    std::string joined;
-    for (std::size_t c = 0; c < cols.size(); ++c) joined += (c ? "," : "") + cols[c];
-    h5::set_attribute(set, "columns", joined);
-    open_csv(directory_ + "/conservation.csv", "mass, momentum, energy and work of the deformable bodies per frame (docs/output-format.md)", cols);
-    conservation_csv_ = std::move(probe_csv_.back());
-    probe_csv_.pop_back();
+    h5::set_attribute(set, "columns", joined(cols));
+    conservation_csv_ = create_csv(directory_ + "/conservation.csv",
+                                   "mass, momentum, energy and work of the deformable bodies per frame "
+                                   "(docs/output-format.md)",
+                                   cols);
   }
-  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  rows_covered_.assign(probe_rows_done_.size(), 0);
+  h5::flush(file_, h5_path_);
+}
+
+std::vector<RunWriter::Csv*> RunWriter::all_csv() {
+  std::vector<Csv*> out;
+  for (Csv& csv : probe_csv_) out.push_back(&csv);
+  out.push_back(&conservation_csv_);
+  return out;
+}
+
+void RunWriter::Csv::write(const std::string& text) {
+  if (std::fwrite(text.data(), 1, text.size(), file.get()) != text.size() || std::fflush(file.get()) != 0) {
+    const int error_number = errno;
+    const std::string message = path + ": writing failed: " + std::strerror(error_number);
+    if (is_out_of_space(error_number)) throw OutOfSpaceError(message, false);
+    throw IoError(message);
+  }
 }
 
 // A CSV with a comment line and a header row.
-void RunWriter::open_csv(const std::string& path, const std::string& comment, const std::vector<std::string>& columns) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) throw IoError(path + ": cannot create");
-  probe_csv_.emplace_back(f);
-  std::fprintf(f, "# %s\n", comment.c_str());
-  for (std::size_t c = 0; c < columns.size(); ++c) std::fprintf(f, "%s%s", c ? "," : "", columns[c].c_str());
-  std::fprintf(f, "\n");
+RunWriter::Csv RunWriter::create_csv(const std::string& path, const std::string& comment,
+                                     const std::vector<std::string>& columns) {
+  Csv csv{path, std::unique_ptr<std::FILE, CloseFile>(std::fopen(path.c_str(), "w")), FileRoom()};
+  if (!csv.file) throw IoError(path + ": cannot create: " + std::strerror(errno));
+  csv.room = FileRoom(path);
+  csv.room.keep(comment.size() + 64 * columns.size() + kCsvTrailerBytes, "its header");
+  csv.write("# " + comment + "\n" + joined(columns) + "\n");
+  return csv;
 }
 
 namespace {
@@ -158,6 +205,7 @@ RunWriter::RunWriter(const std::string& directory, const RunWriterState& at, Vec
   file_ = h5::open_file(h5_path_, true);
   frames_ = h5::open_group(file_, "frames");
   particle_count_ = sim.particles().size();
+  frame_bytes_ = particle_count_ * particle_bytes(kInFrames);
   // Frames after the checkpoint go; those before it stay, in order.
   for (const std::string& name : h5::children(frames_)) {
     const long index = frame_index(name);
@@ -179,60 +227,102 @@ RunWriter::RunWriter(const std::string& directory, const RunWriterState& at, Vec
   h5::Handle g = h5::open_group(file_, "probes");
   for (std::size_t k = 0; k < probes.size(); ++k) {
     probe_sets_.push_back(h5::RowAppender::reopen(g, probes[k]->name(), at.probe_rows[k]));
-    probe_csv_.emplace_back(reopen_cut(directory_ + "/" + probes[k]->name() + ".csv", at.csv_bytes[k]));
+    const std::string path = directory_ + "/" + probes[k]->name() + ".csv";
+    probe_csv_.push_back(Csv{path, std::unique_ptr<std::FILE, CloseFile>(reopen_cut(path, at.csv_bytes[k])), FileRoom(path)});
     probe_rows_done_.push_back(at.probe_rows[k]);
   }
+  rows_covered_.assign(probe_rows_done_.size(), 0);
   conservation_set_ = h5::RowAppender::reopen(file_, "conservation", at.conservation_rows);
-  conservation_csv_.reset(reopen_cut(directory_ + "/conservation.csv", at.csv_bytes.back()));
+  const std::string path = directory_ + "/conservation.csv";
+  conservation_csv_ = Csv{path, std::unique_ptr<std::FILE, CloseFile>(reopen_cut(path, at.csv_bytes.back())), FileRoom(path)};
+  h5_room_ = FileRoom(h5_path_);
+  h5_room_.keep(kFinishBytes, "marking the run running again");
   h5::set_attribute(file_, "status", std::string("running"));
   h5::set_attribute(file_, "frames_written", static_cast<long>(frames_written()));
-  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw IoError(h5_path_ + ": flush failed");
+  h5::flush(file_, h5_path_);
   write_xdmf();
 }
 
 RunWriterState RunWriter::state(const Simulation& sim) {
   flush_probes(sim);
-  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw IoError(h5_path_ + ": flush failed");
+  h5::flush(file_, h5_path_);
+  room_stale_ = true;
   RunWriterState s;
   s.frames = frames_written();
-  auto bytes = [](std::FILE* f) {
-    if (std::fflush(f) != 0) throw IoError("a CSV file: flush failed");
-    const long at = std::ftell(f);
-    if (at < 0) throw IoError("a CSV file: cannot tell its length");
+  auto bytes = [](const Csv& csv) {
+    const long at = std::ftell(csv.file.get());
+    if (at < 0) throw IoError(csv.path + ": cannot tell its length");
     return static_cast<std::uint64_t>(at);
   };
   for (std::size_t k = 0; k < probe_sets_.size(); ++k) {
     s.probe_rows.push_back(probe_rows_done_[k]);
-    s.csv_bytes.push_back(bytes(probe_csv_[k].get()));
+    s.csv_bytes.push_back(bytes(probe_csv_[k]));
   }
   s.conservation_rows = conservation_set_.rows();
-  s.csv_bytes.push_back(bytes(conservation_csv_.get()));
+  s.csv_bytes.push_back(bytes(conservation_csv_));
   return s;
+}
+
+void RunWriter::shrink_room(const Simulation& sim) {
+  flush_probes(sim);
+  h5::flush(file_, h5_path_);
+  room_stale_ = true;
+  h5_room_.release();
+  h5_room_.keep(kFinishBytes, "marking the run stopped");
+  for (Csv* csv : all_csv()) {
+    csv->room.release();
+    csv->room.keep(kCsvTrailerBytes, "the line saying where the run stopped");
+  }
+}
+
+void RunWriter::keep_room(const Simulation& sim) {
+  const auto& probes = sim.probes();
+  std::vector<std::size_t> pending(probes.size());
+  bool covered = !room_stale_;
+  for (std::size_t k = 0; k < probes.size(); ++k) {
+    pending[k] = probes[k]->row_count() - probe_rows_done_[k] + 1;  // and one more step's
+    covered = covered && pending[k] <= rows_covered_[k];
+  }
+  if (covered) return;  // nothing written since, and the probe rows within what is kept
+  // Room for twice the probe rows pending: kept again about once a frame, not every step.
+  std::uint64_t h5 = frame_bytes_ + kFrameMetadataBytes + kFinishBytes + conservation_set_.growth_bound(1);
+  for (std::size_t k = 0; k < probes.size(); ++k) {
+    rows_covered_[k] = 2 * pending[k] + 16;
+    h5 += probe_sets_[k].growth_bound(rows_covered_[k]);
+  }
+  h5_room_.keep(h5, "the next frame and the probe rows until then");
+  for (std::size_t k = 0; k < probes.size(); ++k)
+    probe_csv_[k].room.keep(rows_covered_[k] * (probe_sets_[k].cols() * kCsvCharsPerValue + 1) + kCsvTrailerBytes,
+                            "the probe rows until the next frame");
+  conservation_csv_.room.keep(conservation_set_.cols() * 25 + 1 + kCsvTrailerBytes, "the next frame's row");
+  room_stale_ = false;
 }
 
 // One row of the conservation series per frame (docs/output-format.md).
 void RunWriter::write_conservation(const Simulation& sim) {
   const std::vector<double> row = conservation_row(measure_conservation(sim, gravity_));
   conservation_set_.append(row.data(), 1);
-  for (std::size_t c = 0; c < row.size(); ++c) std::fprintf(conservation_csv_.get(), "%s%.17g", c ? "," : "", row[c]);
-  std::fprintf(conservation_csv_.get(), "\n");
-  if (std::fflush(conservation_csv_.get()) != 0) throw IoError(directory_ + "/conservation.csv: write failed");
+  std::string line;
+  for (std::size_t c = 0; c < row.size(); ++c) line += format("%s%.17g", c ? "," : "", row[c]);
+  conservation_csv_.write(line + "\n");
 }
 
 void RunWriter::flush_probes(const Simulation& sim) {
   auto& probes = sim.probes();
+  std::string text;
   for (std::size_t k = 0; k < probes.size(); ++k) {
     const Probe& probe = *probes[k];
     const std::size_t done = probe_rows_done_[k], total = probe.row_count();
     if (total == done) continue;
     probe_sets_[k].append(probe.row(done), total - done);
     const std::size_t cols = probe.columns().size();
+    text.clear();
     for (std::size_t r = done; r < total; ++r) {
       const double* row = probe.row(r);
-      for (std::size_t c = 0; c < cols; ++c) std::fprintf(probe_csv_[k].get(), "%s%.9g", c ? "," : "", row[c]);
-      std::fprintf(probe_csv_[k].get(), "\n");
+      for (std::size_t c = 0; c < cols; ++c) text += format("%s%.9g", c ? "," : "", row[c]);
+      text += "\n";
     }
-    std::fflush(probe_csv_[k].get());
+    probe_csv_[k].write(text);
     probe_rows_done_[k] = total;
   }
 }
@@ -253,7 +343,8 @@ void RunWriter::write_frame(const Simulation& sim, double dt) {
   write_conservation(sim);
   flush_probes(sim);
   h5::set_attribute(file_, "frames_written", static_cast<long>(frames_written()));
-  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw IoError(h5_path_ + ": flush failed");
+  h5::flush(file_, h5_path_);
+  room_stale_ = true;
   write_xdmf();
 }
 
@@ -263,7 +354,18 @@ void RunWriter::finish(const std::string& status, const Simulation& sim, double 
   h5::set_attribute(file_, "status", status);
   h5::set_attribute(file_, "steps", sim.step_count());
   h5::set_attribute(file_, "clamped_positions", sim.stats().clamped_positions);
-  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  h5::flush(file_, h5_path_);
+  if (status != "completed") {
+    // Where and why the rows end, for a reader of the CSV alone (a resumed run cuts it off).
+    std::string why = status;
+    for (char& c : why)
+      if (c == '\n' || c == '\r') c = ' ';
+    const std::string line = format("# the run stopped here, at t = %.9g s (step %ld, the last frame at t = %.9g s): %s\n",
+                                    sim.time(), sim.step_count(), last_frame_time(), why.c_str());
+    for (Csv* csv : all_csv()) csv->write(line);
+  }
+  h5_room_.release();
+  for (Csv* csv : all_csv()) csv->room.release();
 }
 
 // XDMF 2 sidecar: a temporal collection of point clouds referencing run.h5. Rewritten

@@ -1,13 +1,12 @@
 #include "scene/run_guards.hpp"
 
-#include <sys/statvfs.h>
-
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "io/output_space.hpp"
 
 namespace bsmpm {
 
@@ -36,15 +35,6 @@ double cgroup_headroom() {
   }
 }
 
-double free_disk(const std::string& directory) {
-  namespace fs = std::filesystem;
-  fs::path p = fs::absolute(directory);
-  while (!p.empty() && !fs::exists(p) && p != p.parent_path()) p = p.parent_path();
-  struct statvfs s {};
-  if (statvfs(p.c_str(), &s) != 0) return -1.0;
-  return static_cast<double>(s.f_bavail) * static_cast<double>(s.f_frsize);
-}
-
 }  // namespace
 
 MachineResources machine_resources(const std::string& directory) {
@@ -53,22 +43,15 @@ MachineResources machine_resources(const std::string& directory) {
   const double headroom = cgroup_headroom();
   if (headroom >= 0.0 && (m.available_memory_bytes < 0.0 || headroom < m.available_memory_bytes))
     m.available_memory_bytes = headroom;
-  if (!directory.empty()) m.free_disk_bytes = free_disk(directory);
+  if (!directory.empty()) {
+    m.free_disk_bytes = free_disk_bytes(directory);
+    m.file_size_limit_bytes = bsmpm::file_size_limit_bytes();
+  }
   return m;
 }
 
-std::string format_bytes(double bytes) {
-  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB"};
-  int u = 0;
-  while (bytes >= 1024.0 && u < 5) {
-    bytes /= 1024.0;
-    ++u;
-  }
-  return format(u == 0 ? "%.0f %s" : "%.3g %s", bytes, units[u]);
-}
-
 std::vector<std::string> check_run_cost(const SceneDescription& scene, const RunCost& cost,
-                                        const MachineResources& machine, bool checkpoints) {
+                                        const MachineResources& machine, bool checkpoints, bool disk_full_warns) {
   if (machine.available_memory_bytes >= 0.0 && cost.memory_bytes > machine.available_memory_bytes)
     throw ResourceError(format(
         "%s: %.4g particles and %d grid field(s) of %.4g control points need about %s of memory; this machine has %s "
@@ -84,14 +67,26 @@ std::vector<std::string> check_run_cost(const SceneDescription& scene, const Run
                                kRefusedSteps));
   // The output after the step count: probe and conservation rows grow with the steps, and
   // an absurd step count is the cause to name.
+  std::vector<std::string> warnings;
+  const char* remedy = "Write fewer frames (output.frame_interval) or use a coarser grid; bsmpm run --force starts "
+                       "anyway and stops, resumable, when the disk is full";
+  auto disk_full = [&](const std::string& what) {
+    if (!disk_full_warns) throw ResourceError(scene.path + ": " + what + ". " + remedy);
+    warnings.push_back(what + ": the run will stop, resumable, when the disk is full");
+  };
   const double disk = cost.output_bytes + (checkpoints ? 2.0 * cost.checkpoint_bytes : 0.0);
   if (machine.free_disk_bytes >= 0.0 && disk > machine.free_disk_bytes)
-    throw ResourceError(format(
-        "%s: %.4g frames of %.4g particles make about %s of output%s; the disk has %s free. Write fewer frames "
-        "(output.frame_interval) or use a coarser grid",
-        scene.path.c_str(), cost.frames, cost.particles, format_bytes(disk).c_str(),
-        checkpoints ? " with checkpoints" : "", format_bytes(machine.free_disk_bytes).c_str()));
-  std::vector<std::string> warnings;
+    disk_full(format("%.4g frames of %.4g particles make about %s of output%s; the disk has %s free", cost.frames,
+                     cost.particles, format_bytes(disk).c_str(), checkpoints ? " with checkpoints" : "",
+                     format_bytes(machine.free_disk_bytes).c_str()));
+  // One file (run.h5 holds nearly all the output; a checkpoint is one file too) may not
+  // grow past the process's file-size limit.
+  const double largest = std::max(cost.output_bytes, checkpoints ? cost.checkpoint_bytes : 0.0);
+  if (largest > machine.file_size_limit_bytes)
+    disk_full(format("run.h5 grows to about %s%s, and a file may reach %s (ulimit -f)",
+                     format_bytes(cost.output_bytes).c_str(),
+                     checkpoints ? (", a checkpoint " + format_bytes(cost.checkpoint_bytes)).c_str() : "",
+                     format_bytes(machine.file_size_limit_bytes).c_str()));
   if (cost.steps > kWarnedSteps)
     warnings.push_back(format("%s: about %.3g time steps (%.3g particle-steps): a long run", why.c_str(), cost.steps,
                               cost.particle_steps));
