@@ -4,14 +4,18 @@
 // bsmpm run --resume DIR continues bit for bit.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "cli/arguments.hpp"
+#include "cli/checkpoint_schedule.hpp"
+#include "cli/progress.hpp"
 #include "cli/commands.hpp"
 #include "cli/run_driver.hpp"
 #include "cli/scene_summary.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/version.hpp"
 #include "io/run_reader.hpp"
 #include "scene/run_guards.hpp"
@@ -39,7 +43,7 @@ const char* kHelp =
     "  DIR/conservation.csv  mass, momentum, energies and the work of walls and contact per frame\n"
     "  DIR/summary.json  steps, wall time (and the predicted one), threads, particles, peak\n"
     "                  memory, exit status\n"
-    "  DIR/checkpoint.h5  the state to resume from (every --checkpoint-every, and when stopped)\n"
+    "  DIR/checkpoint.h5  the state to resume from (every 10 minutes, and when stopped)\n"
     "\n"
     "Before anything is built, the run's cost is predicted (and its wall time, from the rates\n"
     "`bsmpm bench` recorded); a run that would not fit in memory or on the disk, or whose time\n"
@@ -50,8 +54,11 @@ const char* kHelp =
     "  --set KEY=VALUE    override a scene value, e.g. --set grid.cell_size=0.008\n"
     "                     (repeatable; VALUE is TOML, a bare word is a string)\n"
     "  --threads N        OpenMP threads (default: all cores); results do not depend on N\n"
-    "  --checkpoint-every EVERY  write DIR/checkpoint.h5 every EVERY of simulated time (0.05s)\n"
-    "                     or steps (2000steps); Ctrl-C and SIGTERM always write one\n"
+    "  --checkpoint-every EVERY  write DIR/checkpoint.h5 every EVERY of wall-clock time (10min,\n"
+    "                     1h), of simulated time (0.05s) or steps (2000steps); 0: never.\n"
+    "                     Default: 10min, or $BSMPM_CHECKPOINT_EVERY (a site's default), so that\n"
+    "                     a run killed without warning loses at most that much; Ctrl-C, SIGTERM\n"
+    "                     and a full disk always write one\n"
     "  --resume DIR       continue the run in DIR from its checkpoint: frames and probe rows\n"
     "                     written after it are replaced; the result is the same, bit for bit,\n"
     "                     as a run never interrupted\n"
@@ -84,6 +91,26 @@ void prepare_directory(const fs::path& dir, bool force) {
   }
 }
 
+// When checkpoints come and what they cost on the disk (their time: summary.json).
+void print_checkpoint_plan(const fs::path& dir, const CheckpointSchedule& schedule, const RunCost& cost,
+                           const WallTimeEstimate& wall) {
+  if (!schedule.enabled()) {
+    std::printf("checkpt  none (--checkpoint-every 0): a run killed without warning starts again from its last "
+                "checkpoint, if any\n");
+    return;
+  }
+  std::string expected;
+  if (schedule.unit() == CheckpointSchedule::Unit::kWallSeconds && std::isfinite(wall.seconds)) {
+    const double n = std::floor(wall.seconds / schedule.every());
+    expected = n < 1.0 ? format("; none in the predicted %s", format_duration(wall.seconds).c_str())
+                       : format("; about %.0f in the predicted %s", n, format_duration(wall.seconds).c_str());
+  }
+  std::printf("checkpt  %s to %s, about %s each (the last one kept, replaced whole)%s; --checkpoint-every 0: "
+              "none\n",
+              schedule.describe().c_str(), (dir / "checkpoint.h5").string().c_str(),
+              format_bytes(cost.checkpoint_bytes).c_str(), expected.c_str());
+}
+
 Vec2 gravity_of(const SceneDescription& scene) {
   const auto* g = scene.effect_parameters<GravityParameters>();
   return g ? g->vector() : Vec2::Zero();
@@ -109,7 +136,8 @@ void check_particles(const Particles& ps, const Simulation& sim, const std::stri
   if (!ok) throw IoError(path + ": its particles are not those of its scene");
 }
 
-int resume_run(const Arguments& args, const std::vector<std::string>& argv, int threads) {
+int resume_run(const Arguments& args, const std::vector<std::string>& argv, int threads,
+               const CheckpointSchedule& schedule) {
   if (!args.positional().empty() || !args.all("--set").empty() || args.has("--out") || args.flag("--force"))
     throw UsageError("--resume DIR takes the scene and its overrides from the checkpoint: give no scene, --set, "
                      "--out or --force");
@@ -129,7 +157,7 @@ int resume_run(const Arguments& args, const std::vector<std::string>& argv, int 
   const SceneDescription scene =
       load_scene_text(c.scene.text, c.scene.path, c.scene.overrides, {render::render_scene_extension()});
   const RunCost cost = predict_run_cost(scene);
-  const auto warnings = check_run_cost(scene, cost, machine_resources(""), true);
+  const auto warnings = check_run_cost(scene, cost, machine_resources(""), schedule.enabled());
   auto sim = build_simulation(scene);
   check_particles(c.particles, *sim, path.string());
   if (c.probes.size() != sim->probes().size()) throw IoError(path.string() + ": its probes are not those of its scene");
@@ -141,7 +169,8 @@ int resume_run(const Arguments& args, const std::vector<std::string>& argv, int 
               sim->time(), c.writer.frames);
   RunWriter writer(dir.string(), c.writer, gravity_of(scene), *sim);
   RunContext ctx{scene, *sim, writer, dir, threads, args.flag("--quiet"), {}, c.scene, c.wall_seconds};
-  if (args.has("--checkpoint-every")) ctx.schedule = CheckpointSchedule::parse(args.option("--checkpoint-every"));
+  ctx.schedule = schedule;
+  print_checkpoint_plan(dir, schedule, cost, wall);
   ctx.predicted_wall_seconds = wall.seconds;
   ctx.checkpoint_scene.command_line += "; " + command_line(argv);
   return drive_run(ctx, c.loop);
@@ -157,9 +186,9 @@ int command_run(const std::vector<std::string>& argv) {
     return kOk;
   }
   const int threads = apply_thread_option(args);
-  CheckpointSchedule schedule;
-  if (args.has("--checkpoint-every")) schedule = CheckpointSchedule::parse(args.option("--checkpoint-every"));
-  if (args.has("--resume")) return resume_run(args, argv, threads);
+  const std::string every = args.option("--checkpoint-every");
+  const CheckpointSchedule schedule = CheckpointSchedule::chosen(args.has("--checkpoint-every") ? &every : nullptr);
+  if (args.has("--resume")) return resume_run(args, argv, threads, schedule);
   if (args.positional().size() != 1) throw UsageError("run expects one scene file (see bsmpm run --help)");
   if (!args.has("--out")) throw UsageError("run needs --out DIR (see bsmpm run --help)");
   const fs::path dir = args.option("--out");
@@ -175,6 +204,7 @@ int command_run(const std::vector<std::string>& argv) {
   print_scene_summary(stdout, scene, *sim, threads);
   const WallTimeEstimate wall = estimate_wall_time(scene, cost, threads);
   print_run_cost(stdout, cost, warnings, wall);
+  print_checkpoint_plan(dir, schedule, cost, wall);
 
   RunProvenance prov;
   prov.title = scene.title;

@@ -54,8 +54,14 @@ int drive_run(RunContext& ctx, RunLoopState start) {
   double last_time = sim.time();
   // The state checkpoint.h5 holds: a resumed run's starting point until it writes another.
   double checkpoint_time = start.started && fs::exists(checkpoint_path(ctx.dir)) ? sim.time() : std::nan("");
+  // What checkpoints cost this session: how many, and the wall time spent writing them.
+  int checkpoints = 0;
+  double checkpoint_seconds = 0.0;
   auto checkpoint = [&](const fs::path& path, const RunLoopState& loop) {
+    const auto begin = std::chrono::steady_clock::now();
     write_checkpoint(path.string(), ctx.checkpoint_scene, sim, loop, writer.state(sim), wall());
+    ++checkpoints;
+    checkpoint_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   };
   // Why the run stops for lack of room, found before anything was half-written: the run
   // stops after this step as if interrupted.
@@ -107,6 +113,8 @@ int drive_run(RunContext& ctx, RunLoopState start) {
     s.status = status;
     s.exit_status = exit_status;
     s.checkpoint_time = checkpoint_time;
+    s.checkpoints = checkpoints;
+    s.checkpoint_seconds = checkpoint_seconds;
     return s;
   };
   RunOutcome outcome;
@@ -193,6 +201,9 @@ int drive_run(RunContext& ctx, RunLoopState start) {
               ctx.dir.string().c_str());
   for (const auto& p : sim.probes()) std::printf(", %s/%s.csv", ctx.dir.string().c_str(), p->name().c_str());
   std::printf(", %s/conservation.csv, %s/summary.json\n", ctx.dir.string().c_str(), ctx.dir.string().c_str());
+  if (checkpoints > 0)
+    std::printf("checkpt  %d written in %.3g s, %.2g %% of the run's %.3g s\n", checkpoints, checkpoint_seconds,
+                100.0 * checkpoint_seconds / std::max(outcome.wall_seconds, 1e-9), outcome.wall_seconds);
   std::fflush(stdout);
   const std::string resume = "bsmpm run --resume " + ctx.dir.string();
   if (full) {

@@ -34,6 +34,8 @@ void write_run_summary(const std::string& dir, const RunSummary& s) {
       .field("max_dt", s.max_dt)
       .field("frames", s.frames)
       .field("checkpoint_time", s.checkpoint_time)
+      .field("checkpoints", s.checkpoints)
+      .field("checkpoint_seconds", s.checkpoint_seconds)
       .field("program_version", s.program_version)
       .field("git_revision", s.git_revision)
       .end_object();
@@ -84,7 +86,11 @@ RunSummary read_run_summary(const std::string& dir) {
   s.min_dt = number("min_dt");
   s.max_dt = number("max_dt");
   s.frames = static_cast<int>(number("frames"));
-  if (values.count("checkpoint_time")) s.checkpoint_time = number("checkpoint_time");  // absent before it existed
+  if (values.count("checkpoint_time")) {  // absent before they existed
+    s.checkpoint_time = number("checkpoint_time");
+    s.checkpoints = static_cast<int>(number("checkpoints"));
+    s.checkpoint_seconds = number("checkpoint_seconds");
+  }
   s.program_version = text_of("program_version");
   s.git_revision = text_of("git_revision");
   return s;

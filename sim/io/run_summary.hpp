@@ -26,6 +26,8 @@ struct RunSummary {
   double max_dt = std::nan("");
   int frames = 0;
   double checkpoint_time = std::nan("");  // s: the state DIR/checkpoint.h5 holds; none (null) without one
+  int checkpoints = 0;                    // written by this session of the run
+  double checkpoint_seconds = 0.0;        // the wall time they took
   std::string program_version;
   std::string git_revision;
 };

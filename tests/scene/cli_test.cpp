@@ -235,3 +235,32 @@ TEST_CASE("OpenMP threads of bsmpm spin briefly, then sleep, unless the environm
   const auto unset = bsmpm_with("bench " + kScene + " --steps 1 --warmup 0 --json", "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT");
   CHECK(contains(unset.output, "\"omp_wait_policy\": \"GOMP_SPINCOUNT=1000\""));
 }
+
+TEST_CASE("Checkpoints come every 10 minutes of wall time unless the command or the site says otherwise", "[cli][checkpoint]") {
+  struct Case {
+    std::string option, environment, plan;
+  };
+  const std::vector<Case> cases = {
+      {"", "env -u BSMPM_CHECKPOINT_EVERY", "checkpt  every 10 min of wall time to "},
+      {" --checkpoint-every 1.5h", "env -u BSMPM_CHECKPOINT_EVERY", "checkpt  every 90 min of wall time to "},
+      {" --checkpoint-every 0.05s", "env -u BSMPM_CHECKPOINT_EVERY", "checkpt  every 0.05 s of simulated time to "},
+      {"", "env BSMPM_CHECKPOINT_EVERY=2000steps", "checkpt  every 2000 steps to "},
+      {" --checkpoint-every 0", "env BSMPM_CHECKPOINT_EVERY=2000steps", "checkpt  none (--checkpoint-every 0)"},
+  };
+  for (const Case& c : cases) {
+    const fs::path dir = scratch() / "checkpoint_plan";
+    fs::remove_all(dir);
+    INFO(c.environment << " bsmpm run" << c.option);
+    const auto r = bsmpm_with("run " + kScene + " --out " + dir.string() + kShortRun + c.option, c.environment);
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(contains(r.output, c.plan));
+    if (c.plan.find("none") == std::string::npos)
+      CHECK(contains(r.output, "checkpoint.h5, about "));  // its size on the disk
+  }
+  const auto bad = bsmpm_with("run " + kScene + " --out " + (scratch() / "never").string() + kShortRun,
+                              "env BSMPM_CHECKPOINT_EVERY=soon");
+  CHECK(bad.status == 2);
+  CHECK(contains(bad.output, "$BSMPM_CHECKPOINT_EVERY expects wall-clock time (10min, 1h), simulated seconds (0.05s), "
+                             "steps (2000steps) or 0 (never), got 'soon'"));
+}

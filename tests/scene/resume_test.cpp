@@ -33,13 +33,16 @@ std::string read_text(const fs::path& p) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-// Runs the program with `args`; returns the wait status. `stop_when(dir)` true sends `signal`.
+// Runs the program with `args`, and `environment` ("NAME=VALUE") added to its environment;
+// returns the wait status. `stop_when(dir)` true sends `signal`.
 template <class Stop>
-int run_program(const std::vector<std::string>& args, int signal, Stop stop_when, const fs::path& dir) {
+int run_program(const std::vector<std::string>& args, int signal, Stop stop_when, const fs::path& dir,
+                const std::string& environment = "") {
   const pid_t pid = fork();
   REQUIRE(pid >= 0);
   if (pid == 0) {
     if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
+    if (!environment.empty() && putenv(const_cast<char*>(environment.c_str())) != 0) _exit(125);
     std::vector<char*> argv{const_cast<char*>(BSMPM_EXECUTABLE)};
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -177,4 +180,18 @@ TEST_CASE("A run killed between checkpoints resumes from the last one bit for bi
   require_identical_runs(uninterrupted(), dir);
   // Resuming a completed run is refused.
   CHECK(resume(dir) == 2);
+}
+
+TEST_CASE("A run killed without any checkpoint option resumes from its periodic checkpoint bit for bit", "[cli][checkpoint]") {
+  // Checkpoints come every 10 minutes of wall time unless told otherwise; a site may set its
+  // own default in BSMPM_CHECKPOINT_EVERY, as here (0.3 s, so that the test need not run for
+  // 10 minutes). Killed some frames after the first one; nothing on the command line asks
+  // for a checkpoint.
+  const fs::path dir = test::scratch_dir("resume_default") / "run";
+  const int status = run_program(run_args(dir), SIGKILL,
+                                 [](const fs::path& d) { return fs::exists(d / "checkpoint.h5") && frames_listed(d) >= 6; },
+                                 dir, "BSMPM_CHECKPOINT_EVERY=0.005min");
+  REQUIRE(WIFSIGNALED(status));
+  CHECK(resume(dir) == 0);
+  require_identical_runs(uninterrupted(), dir);
 }

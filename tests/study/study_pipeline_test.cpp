@@ -1,6 +1,7 @@
 // The tiny study end to end through `bsmpm study` and Snakemake on local cores: its CSV,
-// a second invocation that runs nothing, a deleted case that alone runs again, a failing
-// case reported with its log while the other completes, and a bad study that runs nothing.
+// a second invocation that runs nothing, a deleted case that alone runs again, cases stopped
+// by a full disk that resume from their checkpoints, a failing case reported with its log
+// while the other completes, and a bad study that runs nothing.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -78,6 +79,39 @@ TEST_CASE("a tiny study runs through Snakemake, resumes, and reruns only what is
   for (const auto& [key, stamp] : first)
     if (key != gone) CHECK(third.at(key) == stamp);
   CHECK(test::read_csv(out / "tiny.csv").rows.size() == 4);
+}
+
+TEST_CASE("a case stopped by a full disk continues from its checkpoint when the study runs again", "[study][pipeline]") {
+  // Files limited to 400 KiB: each case's run.h5 stops after a frame or two (exit 4, with a
+  // checkpoint); with room again, each case resumes from its checkpoint, to the metrics of
+  // the same study run with room.
+  const fs::path out = test::scratch_dir("tiny_full_disk") / "out";
+  const std::string narrow = " --axis grid=0.025 --keep-going";
+  CHECK(test::run_command("prlimit --fsize=409600 -- " + study_command("tiny_study.toml", out, narrow),
+                          out.string() + ".1.log") == 1);
+  const std::string stopped = test::read_text(out.string() + ".1.log");
+  INFO(stopped);
+  CHECK(stopped.find("failed: bsmpm: error: out of space: cases/") != std::string::npos);
+  std::size_t with_checkpoint = 0;
+  for (const auto& d : fs::directory_iterator(out / "cases")) {
+    CHECK(test::read_text(d.path() / "run.log").find("bsmpm: error: out of space: ") != std::string::npos);
+    with_checkpoint += fs::exists(d.path() / "checkpoint.h5");
+  }
+  REQUIRE(with_checkpoint == 2);
+  REQUIRE(test::run_command(study_command("tiny_study.toml", out, narrow), out.string() + ".2.log") == 0);
+  for (const auto& d : fs::directory_iterator(out / "cases"))
+    CHECK(test::read_text(d.path() / "run.log").find("resume   cases/" + d.path().filename().string() + " at step ") !=
+          std::string::npos);
+  const fs::path reference = test::scratch_dir("tiny_with_room") / "out";
+  REQUIRE(test::run_command(study_command("tiny_study.toml", reference, narrow), reference.string() + ".log") == 0);
+  const test::Csv resumed = test::read_csv(out / "tiny.csv"), fresh = test::read_csv(reference / "tiny.csv");
+  REQUIRE(resumed.rows.size() == 2);
+  REQUIRE(fresh.rows.size() == 2);
+  for (std::size_t r = 0; r < 2; ++r)
+    for (const char* metric : {"peak_P", "peak_P_time", "impact", "lowest", "steps"}) {
+      INFO(metric);
+      CHECK(resumed.rows[r].at(metric) == fresh.rows[r].at(metric));
+    }
 }
 
 TEST_CASE("a failing case is reported with its log while the others complete", "[study][pipeline]") {
