@@ -55,9 +55,12 @@ struct ProgramResult {
   std::string output;
 };
 
-// Runs the built program with `args` (a shell command line), its output kept in `log`.
-inline ProgramResult run_program(const std::string& args, const std::filesystem::path& log) {
-  const int status = std::system((std::string(BSMPM_EXECUTABLE) + " " + args + " > " + log.string() + " 2>&1").c_str());
+// Runs the built program with `args` (a shell command line), its output kept in `log`;
+// through `prefix` if given (e.g. "env NAME=VALUE", "prlimit --as=N --").
+inline ProgramResult run_program(const std::string& args, const std::filesystem::path& log,
+                                 const std::string& prefix = "") {
+  const int status = std::system(
+      (prefix + (prefix.empty() ? "" : " ") + BSMPM_EXECUTABLE + " " + args + " > " + log.string() + " 2>&1").c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(log)};
 }
 

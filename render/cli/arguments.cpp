@@ -73,10 +73,13 @@ const std::vector<std::string>& Arguments::all(const std::string& name) const {
 }
 
 int apply_thread_option(const Arguments& args) {
+  if (!args.has("--threads")) return omp_get_max_threads();  // all cores (or OMP_NUM_THREADS)
   const long n = args.integer("--threads", 0);
-  if (n < 0 || n > 1024) throw UsageError("--threads expects 0 (all cores) to 1024");
-  if (n > 0) omp_set_num_threads(static_cast<int>(n));
-  return n > 0 ? static_cast<int>(n) : omp_get_max_threads();
+  if (n < 1 || n > 1024)
+    throw UsageError("--threads expects 1 to 1024, got " + std::to_string(n) + " (without --threads: all " +
+                     std::to_string(omp_get_num_procs()) + " cores)");
+  omp_set_num_threads(static_cast<int>(n));
+  return static_cast<int>(n);
 }
 
 }  // namespace bsmpm::cli

@@ -30,7 +30,7 @@ class Arguments {
   std::vector<std::string> positional_;
 };
 
-// Sets the OpenMP thread count from --threads (0 or absent: all cores); returns it.
+// Sets the OpenMP thread count from --threads (1 to 1024; absent: all cores); returns it.
 int apply_thread_option(const Arguments& args);
 
 }  // namespace bsmpm::cli

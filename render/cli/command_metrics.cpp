@@ -9,6 +9,7 @@
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 #include "io/json.hpp"
 #include "study/run_metrics.hpp"
 #include "study/study_loader.hpp"
@@ -43,8 +44,7 @@ void print_series(const Series& s, double time_factor, const std::string& column
 
 // Two numeric columns (T*, value); other lines are skipped only if they are comments.
 Series read_measured_series(const std::string& path, double time_factor) {
-  std::ifstream in(path);
-  if (!in) throw IoError(path + ": cannot open");
+  std::istringstream in(read_input_file(path, "the series file"));
   Series s;
   std::string line;
   int number = 0;
@@ -55,7 +55,7 @@ Series read_measured_series(const std::string& path, double time_factor) {
     std::istringstream fields(line);
     double t_star = 0.0, y = 0.0;
     if (line.find_first_not_of(" \t\r") == std::string::npos || line[line.find_first_not_of(" \t\r")] == '#') continue;
-    if (!(fields >> t_star >> y)) throw IoError(path + ":" + std::to_string(number) + ": expected two numbers");
+    if (!(fields >> t_star >> y)) throw InputError(path + ":" + std::to_string(number) + ": expected two numbers");
     const double t = t_star / time_factor;
     if (!s.t.empty() && !(t > s.t.back())) continue;  // repeated times in digitised data
     s.t.push_back(t);

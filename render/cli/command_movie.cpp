@@ -35,7 +35,8 @@ const std::string kHelp = std::string(
     "\n"
     "The movie appears complete or not at all (written under a temporary name, then renamed);\n"
     "Ctrl-C stops without one.\n"
-    "exit status: 0 done, 2 bad usage or unreadable run file, 130 interrupted, 1 other failure\n";
+    "exit status: 0 done, 2 bad usage or unreadable run file, 130 interrupted (143 by SIGTERM),\n"
+    "1 other failure\n";
 
 // Run frame shown by each movie frame: movie time k / fps is simulated time
 // t0 + k / (fps slowmo); the frame shown is the last one at or before it.

@@ -1,4 +1,5 @@
 // bsmpm render RUN.h5 --out DIR|FILE.png: frames of a run as PNG images, off screen.
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -45,7 +46,8 @@ const std::string kHelp = std::string(
     "\n"
     "Images appear complete or not at all (written under a temporary name, then renamed);\n"
     "Ctrl-C stops after the current frame and keeps the images written so far.\n"
-    "exit status: 0 done, 2 bad usage or unreadable run file, 130 interrupted, 1 other failure\n";
+    "exit status: 0 done, 2 bad usage or unreadable run file, 130 interrupted (143 by SIGTERM),\n"
+    "1 other failure\n";
 
 std::pair<int, int> parse_layout(const std::string& text) {
   const auto x = text.find('x');
@@ -61,6 +63,17 @@ std::pair<int, int> parse_layout(const std::string& text) {
 }
 
 bool is_png_path(const std::string& path) { return fs::path(path).extension() == ".png"; }
+
+// An --out that names an image of another kind: render writes PNG only, and a directory of
+// that name (one PNG per frame inside) is not what was meant.
+void refuse_other_image_types(const std::string& out) {
+  std::string ext = fs::path(out).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* image : {".jpg", ".jpeg", ".gif", ".bmp", ".tif", ".tiff", ".webp", ".svg", ".pdf", ".eps", ".ppm"})
+    if (ext == image)
+      throw UsageError("--out " + out + ": render writes PNG images; give FILE.png for one image (or a --layout "
+                       "figure), or a directory for one PNG per frame");
+}
 
 // The output directory; removed again if this command created it and wrote nothing into
 // it (a failure or an interruption before the first image).
@@ -97,6 +110,7 @@ int command_render(const std::vector<std::string>& argv) {
   const bool quiet = args.flag("--quiet");
   const bool layout = args.has("--layout");
   const auto [rows, cols] = layout ? parse_layout(args.option("--layout")) : std::pair{1, 1};
+  refuse_other_image_types(out);
   if (layout && !is_png_path(out)) throw UsageError("--layout draws one image: give --out FILE.png");
   if (is_png_path(out)) check_output_file(out);
   else if (fs::exists(out) && !fs::is_directory(out)) throw UsageError("--out " + out + " exists and is not a directory");
@@ -119,6 +133,10 @@ int command_render(const std::vector<std::string>& argv) {
     for (int f : frames) loaded.push_back(figures.load(f));
     std::vector<const render::FrameParticles*> panels;
     for (const auto& p : loaded) panels.push_back(&p);
+    if (static_cast<int>(frames.size()) < rows * cols)
+      std::fprintf(stderr, "bsmpm: warning: --layout %dx%d has %d panels for %zu frame%s: %d stay blank\n", rows, cols,
+                   rows * cols, frames.size(), frames.size() == 1 ? "" : "s",
+                   rows * cols - static_cast<int>(frames.size()));
     const render::FigureSpec spec = figures.grid(panels, rows, cols, renderer.font());
     render::write_png(renderer.render(spec), out);
     std::printf("wrote    %s (%dx%d, %zu frames in %dx%d)\n", out.c_str(), spec.width, spec.height, frames.size(), rows,

@@ -64,7 +64,8 @@ const char* kHelp =
     "                     as a run never interrupted\n"
     "  --force            replace the run already in DIR; and start even when the predicted\n"
     "                     output does not fit on DIR's disk (the run then stops, resumable,\n"
-    "                     when the disk is full)\n"
+    "                     when the disk is full), or when it is predicted to take more\n"
+    "                     than a month\n"
     "  --quiet            no progress line\n"
     "\n"
     "exit status: 0 done, 2 bad scene or usage or a run too large, 3 numerical instability\n"
@@ -197,12 +198,13 @@ int command_run(const std::vector<std::string>& argv) {
   // too large for this machine, leaves nothing.
   const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"), {render::render_scene_extension()});
   const RunCost cost = predict_run_cost(scene);
-  const auto warnings =
+  auto warnings =
       check_run_cost(scene, cost, machine_resources(dir.string()), schedule.enabled(), args.flag("--force"));
+  const WallTimeEstimate wall = estimate_wall_time(scene, cost, threads);
+  for (const std::string& w : check_wall_time(scene, wall, args.flag("--force"))) warnings.push_back(w);
   auto sim = build_simulation(scene);
   prepare_directory(dir, args.flag("--force"));
   print_scene_summary(stdout, scene, *sim, threads);
-  const WallTimeEstimate wall = estimate_wall_time(scene, cost, threads);
   print_run_cost(stdout, cost, warnings, wall);
   print_checkpoint_plan(dir, schedule, cost, wall);
 

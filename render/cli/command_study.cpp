@@ -237,10 +237,12 @@ int command_study(const std::vector<std::string>& argv) {
   }
   if (status != 0 && after.failed > 0 && after.done > 0) {
     // The others finished: aggregate what there is, the failed cases marked as such.
+    // An argument vector, not a shell line: a study directory may hold spaces or ';'.
     const fs::path csv = out / (study.name + ".csv");
-    const std::string cmd = python() + " " + (workflow / "aggregate.py").string() + " " + (out / "plan.json").string() +
-                            " " + csv.string() + " --partial >> " + log.string() + " 2>&1";
-    if (std::system(cmd.c_str()) == 0) std::printf("wrote    %s (partial: %d failed)\n", csv.c_str(), after.failed);
+    const std::vector<std::string> aggregate = {python(), (workflow / "aggregate.py").string(),
+                                                (out / "plan.json").string(), csv.string(), "--partial"};
+    if (run_child(aggregate, out, log, {}) == 0)
+      std::printf("wrote    %s (partial: %d failed)\n", csv.c_str(), after.failed);
   }
   if (status != 0) {
     if (after.failed == 0)

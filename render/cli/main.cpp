@@ -54,7 +54,18 @@ const char* kHelp =
     "                          through the sensor model (resampled, moving average)\n"
     "\n"
     "  bsmpm COMMAND --help    the options of a command\n"
-    "  bsmpm --version         program version\n";
+    "  bsmpm --version         program version\n"
+    "\n"
+    "exit status (every command)\n"
+    "  0    done (compare: within its tolerance)\n"
+    "  1    another failure: an I/O error other than a full disk, a study case or the workflow\n"
+    "       failed, compare beyond its tolerance or of images of different sizes\n"
+    "  2    bad input: an unknown command or option, a scene or study error, an input file\n"
+    "       missing, unreadable or damaged, a run refused before it starts (memory, disk, time)\n"
+    "  3    numerical instability (run: frames kept, the failing state in checkpoint_failed.h5)\n"
+    "  4    out of space (run: stopped between two steps, every file whole, resumable)\n"
+    "  130  interrupted by Ctrl-C (SIGINT): what was written is kept, a run resumes\n"
+    "  143  interrupted by SIGTERM: as 130\n";
 
 }  // namespace
 
@@ -86,6 +97,9 @@ int main(int argc, char** argv) {
     if (command == "study") return cli::command_study(args);
     if (command == "metrics") return cli::command_metrics(args);
     throw UsageError("unknown command '" + command + "' (see bsmpm --help)");
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
+    return cli::kBadInput;
   } catch (const SceneError& e) {
     std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
     return cli::kBadInput;

@@ -122,11 +122,7 @@ render::FrameSelection frame_selection_from(const Arguments& args) {
 }
 
 RunReader open_input_run(const Arguments& args) {
-  try {
-    return RunReader(args.positional()[0]);
-  } catch (const IoError& e) {
-    throw UsageError(e.what());
-  }
+  return RunReader(args.positional()[0]);  // an InputError (exit 2) when it cannot be read
 }
 
 void check_output_file(const std::string& path) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cli/progress.hpp"
+#include "core/error.hpp"
 #include "core/format.hpp"
 #include "scene/calibration_file.hpp"
 #include "scene/run_calibration.hpp"
@@ -41,6 +42,15 @@ WallTimeEstimate estimate_wall_time(const SceneDescription& scene, const RunCost
     for (std::size_t i = 0; i < choice->differences.size(); ++i) e.line += (i ? ", " : "") + choice->differences[i];
   }
   return e;
+}
+
+std::vector<std::string> check_wall_time(const SceneDescription& scene, const WallTimeEstimate& wall, bool force) {
+  if (!(wall.seconds > kWarnedWallSeconds)) return {};  // also without a calibration (NaN)
+  const std::string what = format("the run is predicted to take %s on this machine", format_duration(wall.seconds).c_str());
+  if (wall.seconds > kRefusedWallSeconds && !force)
+    throw ResourceError(scene.path + ": " + what + ", more than a month. Use a coarser grid (grid.cell_size), or a "
+                        "larger machine; bsmpm run --force starts it anyway");
+  return {what + (wall.seconds > kRefusedWallSeconds ? ": more than a month" : ": a long run")};
 }
 
 }  // namespace bsmpm::cli

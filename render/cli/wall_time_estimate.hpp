@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "scene/run_cost.hpp"
 #include "scene/scene_description.hpp"
@@ -19,5 +20,12 @@ struct WallTimeEstimate {
 };
 
 WallTimeEstimate estimate_wall_time(const SceneDescription& scene, const RunCost& cost, int threads);
+
+// A run predicted to take longer than a month on this machine is a scene far beyond it (a grid
+// much finer than meant): refused (ResourceError naming the scene and the time) unless
+// `force`, when it is a warning; longer than a day is warned about. Returns the warnings.
+inline constexpr double kRefusedWallSeconds = 30.0 * 86400.0;
+inline constexpr double kWarnedWallSeconds = 86400.0;
+std::vector<std::string> check_wall_time(const SceneDescription& scene, const WallTimeEstimate& wall, bool force);
 
 }  // namespace bsmpm::cli

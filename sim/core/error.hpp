@@ -49,6 +49,14 @@ class IoError : public Error {
   using Error::Error;
 };
 
+// An input the user named cannot be read: a scene, study or run file that is missing, a
+// directory, not readable, not of its kind or damaged. Bad input (exit 2), like a wrong key;
+// an IoError still, for code that catches any failed read.
+class InputError : public IoError {
+ public:
+  using IoError::IoError;
+};
+
 // There is no room left for the output: the disk (or the user's quota) is full, or the file
 // reached the size limit of the process (ulimit -f). `clean()`: found before anything was
 // written (io/output_space.hpp reserves the room first), so every file is whole; otherwise a

@@ -18,6 +18,18 @@ herr_t find_errno(unsigned, const H5E_error2_t* entry, void* out) {
   return 0;
 }
 
+herr_t find_innermost(unsigned, const H5E_error2_t* entry, void* out) {
+  if (entry->desc) *static_cast<std::string*>(out) = entry->desc;
+  return 0;
+}
+
+// What the innermost entry of HDF5's error stack says (e.g. "truncated file: eof = ...").
+std::string innermost_error() {
+  std::string text;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, find_innermost, &text);
+  return text;
+}
+
 // The error of the HDF5 call that just failed: an OutOfSpaceError when the file system said
 // that there is no room (the write failed half-way, so not clean), else an IoError.
 [[noreturn]] void fail(const std::string& what) {
@@ -80,7 +92,10 @@ Handle create_file(const std::string& path) {
 Handle open_file(const std::string& path, bool writable) {
   quiet_errors();
   hid_t id = H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (id < 0) throw IoError(path + ": cannot open as an HDF5 file");
+  if (id < 0) {
+    const std::string detail = innermost_error();
+    throw IoError(path + ": cannot open as an HDF5 file" + (detail.empty() ? "" : " (HDF5: " + detail + ")"));
+  }
   return Handle(id, "opening " + path);
 }
 

@@ -1,5 +1,10 @@
 #include "io/run_reader.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,16 +17,25 @@ namespace bsmpm {
 namespace {
 
 // The helpers in io/hdf5 name the object but not the file; every error leaving the reader
-// names the run file too.
+// names the run file too, and is an InputError: the file is not what a run writes.
 template <class F>
 auto with_path(const std::string& path, F&& read) -> decltype(read()) {
   try {
     return read();
   } catch (const IoError& e) {
     const std::string what = e.what();
-    if (what.rfind(path, 0) == 0) throw;
-    throw IoError(path + ": " + what);
+    throw InputError(what.rfind(path, 0) == 0 ? what : path + ": " + what);
   }
+}
+
+// Whether another process holds a lock on the file: HDF5 (1.10.7 and later) keeps one on a
+// file it writes, so that no reader sees it half-written.
+bool locked_by_a_writer(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool locked = flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+  ::close(fd);
+  return locked;
 }
 
 // An HDF5 file starts with this signature (when it has no user block, as run files do).
@@ -48,15 +62,20 @@ std::vector<std::string> split_columns(const std::string& joined) {
 }  // namespace
 
 RunReader::RunReader(const std::string& path) : path_(path) {
-  if (!std::filesystem::exists(path)) throw IoError(path + ": no such file");
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) throw InputError(path + ": no such file");
+  if (std::filesystem::is_directory(path, error)) throw InputError(path + ": a directory, not a run file");
   try {
     file_ = h5::open_file(path);
   } catch (const IoError& e) {
-    // HDF5 locks a file while a writer has it open: a run still running cannot be read.
-    if (!has_hdf5_signature(path)) throw;
-    throw IoError(std::string(e.what()) +
-                  " (if its run is still being written, HDF5's file lock refuses readers: wait for it to end, or set"
-                  " HDF5_USE_FILE_LOCKING=FALSE)");
+    if (!has_hdf5_signature(path)) throw InputError(path + ": not an HDF5 file (bsmpm run writes run.h5)");
+    if (locked_by_a_writer(path))
+      throw InputError(path + ": a run is still writing it, and HDF5 locks a file it writes: wait for the run to "
+                       "end, or set HDF5_USE_FILE_LOCKING=FALSE to read the frames it has flushed");
+    throw InputError(std::string(e.what()) +
+                     ": the file is damaged (h5ls cannot open it either): a write cut short leaves it so, by a "
+                     "crash, or by a full disk on a file system where bsmpm cannot reserve room ahead "
+                     "(docs/output-format.md, \"A full disk\")");
   }
   with_path(path_, [&] {
     if (!h5::has_attribute(file_, "format") || h5::get_string_attribute(file_, "format") != "bsmpm-run")

@@ -1,5 +1,6 @@
 #include "scene/overrides.hpp"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,14 @@ toml::node& parse_value(const std::string& key, const std::string& value, toml::
   return *holder.get("v");
 }
 
+// A key that an override adds to the scene, with "--set KEY" as its source: an error about it
+// (an unknown key, a misspelling) names the override rather than the scene file.
+toml::key override_key(const std::string& name, const std::string& assignment_key) {
+  toml::source_region source;
+  source.path = std::make_shared<const std::string>("--set " + assignment_key);
+  return toml::key(name, std::move(source));
+}
+
 }  // namespace
 
 void apply_override(toml::table& root, std::string_view assignment) {
@@ -89,11 +98,13 @@ void apply_override(toml::table& root, std::string_view assignment) {
     }
     if (last) {
       toml::table holder;
-      table->insert_or_assign(seg.key, std::move(parse_value(key, value, holder)));
+      toml::node& parsed = parse_value(key, value, holder);
+      if (table->contains(seg.key)) table->insert_or_assign(seg.key, std::move(parsed));
+      else table->insert_or_assign(override_key(seg.key, key), std::move(parsed));
       return;
     }
     toml::node* next = table->get(seg.key);
-    if (!next) next = &table->insert_or_assign(seg.key, toml::table{}).first->second;
+    if (!next) next = &table->insert_or_assign(override_key(seg.key, key), toml::table{}).first->second;
     table = next->as_table();
     if (!table) throw UsageError("--set " + key + ": '" + seg.key + "' is not a table in the scene");
   }

@@ -6,6 +6,7 @@
 #include <regex>
 #include <sstream>
 
+#include "core/input_file.hpp"
 #include "step/effects/scene_tables.hpp"
 #include "parameters/table_reader.hpp"
 #include "scene/effect_registry.hpp"
@@ -286,11 +287,7 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
 
 SceneDescription load_scene(const std::string& path, const std::vector<std::string>& overrides,
                             const std::vector<SceneExtension>& extensions) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return load_scene_text(text.str(), path, overrides, extensions);
+  return load_scene_text(read_input_file(path, "the scene file"), path, overrides, extensions);
 }
 
 }  // namespace bsmpm

@@ -5,6 +5,7 @@
 #include <regex>
 #include <sstream>
 
+#include "core/input_file.hpp"
 #include "parameters/table_reader.hpp"
 #include "study/study_loader_parts.hpp"
 #include "study/toml_text.hpp"
@@ -147,11 +148,7 @@ StudyDescription load_study_text(const std::string& text, const std::string& pat
 }
 
 StudyDescription load_study(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path + ": cannot open the study file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return load_study_text(text.str(), path);
+  return load_study_text(read_input_file(path, "the study file"), path);
 }
 
 std::size_t StudyDescription::case_count() const {

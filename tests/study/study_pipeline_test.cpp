@@ -115,7 +115,9 @@ TEST_CASE("a case stopped by a full disk continues from its checkpoint when the 
 }
 
 TEST_CASE("a failing case is reported with its log while the others complete", "[study][pipeline]") {
-  const fs::path out = test::scratch_dir("failing") / "out";
+  // A directory name a shell would split or run (the partial CSV is aggregated by a child
+  // process given its arguments one by one, never through a shell line).
+  const fs::path out = test::scratch_dir("failing") / "out dir; touch pwned";
   const fs::path log = out.string() + ".log";
   CHECK(test::run_command(study_command("failing_study.toml", out, "--keep-going"), log) == 1);
   const std::string text = test::read_text(log);
@@ -134,6 +136,8 @@ TEST_CASE("a failing case is reported with its log while the others complete", "
   CHECK(csv.number(0, "peak_P") > 1000.0);
   CHECK(csv.rows[1].at("status") == "failed");
   CHECK(csv.rows[1].at("peak_P").empty());
+  CHECK(!fs::exists("pwned"));
+  CHECK(!fs::exists(out.parent_path() / "pwned"));
 }
 
 TEST_CASE("a bad study file is an error naming file:line:column, and nothing runs", "[study][errors]") {

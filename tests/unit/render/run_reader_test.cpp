@@ -89,7 +89,7 @@ TEST_CASE("RunReader errors name the file and what is wrong", "[render][reader]"
 
   const std::string text = (dir / "text.h5").string();
   { std::ofstream(text) << "not hdf5\n"; }
-  CHECK_THROWS_WITH(RunReader(text), Catch::Contains(text) && Catch::Contains("cannot open as an HDF5 file"));
+  CHECK_THROWS_WITH(RunReader(text), Catch::Contains(text) && Catch::Contains("not an HDF5 file"));
 
   const std::string other = (dir / "other.h5").string();
   { h5::Handle f = h5::create_file(other); }
