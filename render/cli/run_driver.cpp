@@ -34,6 +34,13 @@ RunSummary summarize(const RunContext& ctx, long steps, double wall_seconds) {
   s.particle_steps_per_second = steps * static_cast<double>(s.particles) / std::max(wall_seconds, 1e-9);
   s.peak_memory_mb = peak_resident_memory_mb();
   s.frames = ctx.writer.frames_written();
+  const PressureSolveStats& pressure = ctx.sim.stats().pressure;
+  if (pressure.solves > 0) {
+    s.pressure_solves = pressure.solves;
+    s.pressure_iterations_mean = double(pressure.iterations) / pressure.solves;
+    s.pressure_iterations_max = pressure.max_iterations;
+    s.pressure_residual_max = pressure.max_residual;
+  }
   s.program_version = kVersion;
   s.git_revision = kGitRevision;
   return s;
@@ -97,9 +104,13 @@ int drive_run(RunContext& ctx, RunLoopState start) {
     hooks.on_progress = [&](const RunProgress& p) {
       if (!tty && p.wall_seconds - last_line < 10.0) return;
       last_line = p.wall_seconds;
-      std::fprintf(stderr, "%sstep %ld  t = %.5f s (T* %.2f, %3.0f%%)  dt = %.2e s  %.0f steps/s  ETA %s%s",
+      // The incompressible fluid's last pressure solve: its iterations and residual.
+      const PressureSolve& solve = sim.last_step().pressure;
+      const std::string pressure =
+          solve.unknowns > 0 ? format("  p-solve %d it, res %.1e", solve.iterations, solve.residual) : "";
+      std::fprintf(stderr, "%sstep %ld  t = %.5f s (T* %.2f, %3.0f%%)  dt = %.2e s%s  %.0f steps/s  ETA %s%s",
                    tty ? "\r" : "", p.step, p.time, p.time * t_scale, 100.0 * p.time / p.end_time, p.dt,
-                   p.steps_per_second, format_duration(p.eta_seconds).c_str(), tty ? "   " : "\n");
+                   pressure.c_str(), p.steps_per_second, format_duration(p.eta_seconds).c_str(), tty ? "   " : "\n");
       std::fflush(stderr);
     };
   ctx.schedule.start(sim);
@@ -195,6 +206,9 @@ int drive_run(RunContext& ctx, RunLoopState start) {
   std::printf("%s  %ld steps in %.1f s: %.1f steps/s, %.3g particle-steps/s on %d threads; dt %.3g .. %.3g s\n",
               outcome.interrupted ? "stopped" : "done   ", outcome.steps, outcome.wall_seconds, steps_per_s,
               steps_per_s * sim.particles().size(), ctx.threads, outcome.min_dt, outcome.max_dt);
+  if (const PressureSolveStats& ps = sim.stats().pressure; ps.solves > 0)
+    std::printf("pressure %ld solves: %.1f iterations on average, at most %d; largest residual %.2g\n", ps.solves,
+                double(ps.iterations) / ps.solves, ps.max_iterations, ps.max_residual);
   if (sim.stats().clamped_positions > 0)
     std::printf("note     %ld particle positions were pushed back inside the domain\n", sim.stats().clamped_positions);
   std::printf("wrote    %s (%d frames), %s/run.xdmf", writer.h5_path().c_str(), writer.frames_written(),

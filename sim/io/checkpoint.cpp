@@ -130,6 +130,12 @@ void write_checkpoint(const std::string& path, const CheckpointScene& scene, con
         h5::set_attribute(g, "max_signal_speed", c.max_signal_speed);
         h5::set_attribute(g, "clamped_positions", c.stats.clamped_positions);
         write_work(g, "work_", c.stats.work);
+        h5::set_attribute(g, "pressure_solves", c.stats.pressure.solves);
+        h5::set_attribute(g, "pressure_iterations", c.stats.pressure.iterations);
+        h5::set_attribute(g, "pressure_max_iterations", static_cast<long>(c.stats.pressure.max_iterations));
+        h5::set_attribute(g, "pressure_max_residual", c.stats.pressure.max_residual);
+        if (!c.effect_state.empty())
+          h5::write_dataset(g, "effect_state", c.effect_state.data(), c.effect_state.size(), 1);
       }
       {
         h5::Handle g = h5::create_group(f, "run_loop");
@@ -209,6 +215,13 @@ Checkpoint read_checkpoint(const std::string& path) {
       c.counters.max_signal_speed = h5::get_double_attribute(g, "max_signal_speed");
       c.counters.stats.clamped_positions = h5::get_long_attribute(g, "clamped_positions");
       c.counters.stats.work = read_work(g, "work_");
+      if (h5::has_attribute(g, "pressure_solves")) {  // written since the incompressible fluid
+        c.counters.stats.pressure.solves = h5::get_long_attribute(g, "pressure_solves");
+        c.counters.stats.pressure.iterations = h5::get_long_attribute(g, "pressure_iterations");
+        c.counters.stats.pressure.max_iterations = static_cast<int>(h5::get_long_attribute(g, "pressure_max_iterations"));
+        c.counters.stats.pressure.max_residual = h5::get_double_attribute(g, "pressure_max_residual");
+      }
+      if (H5Lexists(g, "effect_state", H5P_DEFAULT) > 0) c.counters.effect_state = h5::read_doubles(g, "effect_state");
     }
     {
       h5::Handle g = h5::open_group(f, "run_loop");

@@ -36,6 +36,10 @@ void write_run_summary(const std::string& dir, const RunSummary& s) {
       .field("checkpoint_time", s.checkpoint_time)
       .field("checkpoints", s.checkpoints)
       .field("checkpoint_seconds", s.checkpoint_seconds)
+      .field("pressure_solves", s.pressure_solves)
+      .field("pressure_iterations_mean", s.pressure_iterations_mean)
+      .field("pressure_iterations_max", s.pressure_iterations_max)
+      .field("pressure_residual_max", s.pressure_residual_max)
       .field("program_version", s.program_version)
       .field("git_revision", s.git_revision)
       .end_object();
@@ -90,6 +94,12 @@ RunSummary read_run_summary(const std::string& dir) {
     s.checkpoint_time = number("checkpoint_time");
     s.checkpoints = static_cast<int>(number("checkpoints"));
     s.checkpoint_seconds = number("checkpoint_seconds");
+  }
+  if (values.count("pressure_solves")) {  // written since the incompressible fluid
+    s.pressure_solves = static_cast<long>(number("pressure_solves"));
+    s.pressure_iterations_mean = number("pressure_iterations_mean");
+    s.pressure_iterations_max = static_cast<int>(number("pressure_iterations_max"));
+    s.pressure_residual_max = number("pressure_residual_max");
   }
   s.program_version = text_of("program_version");
   s.git_revision = text_of("git_revision");

@@ -28,6 +28,11 @@ struct RunSummary {
   double checkpoint_time = std::nan("");  // s: the state DIR/checkpoint.h5 holds; none (null) without one
   int checkpoints = 0;                    // written by this session of the run
   double checkpoint_seconds = 0.0;        // the wall time they took
+  // The incompressible fluid's pressure solves (docs/method.md §12); 0 and unknown without one.
+  long pressure_solves = 0;
+  double pressure_iterations_mean = std::nan("");
+  int pressure_iterations_max = 0;
+  double pressure_residual_max = std::nan("");
   std::string program_version;
   std::string git_revision;
 };

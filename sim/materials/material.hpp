@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "materials/elastic_solid.hpp"
+#include "materials/incompressible_fluid.hpp"
 #include "materials/material_attribute.hpp"
 #include "materials/rigid_body.hpp"
 #include "materials/weakly_compressible_fluid.hpp"
@@ -53,6 +54,7 @@ struct MaterialList {
 // Every material a scene can name, one per line.
 using RegisteredMaterials = MaterialList<
     WeaklyCompressibleFluid,
+    IncompressibleFluid,
     ElasticSolid,
     RigidBody>;
 
@@ -81,5 +83,6 @@ inline double wave_speed(const Material& m, double J) {
 inline bool is_rigid(const Material& m) { return kind_of(m) == MaterialKind::kRigid; }
 inline bool is_fluid(const Material& m) { return kind_of(m) == MaterialKind::kFluid; }
 inline bool is_elastic(const Material& m) { return kind_of(m) == MaterialKind::kElastic; }
+inline bool is_incompressible(const Material& m) { return std::holds_alternative<IncompressibleFluid>(m); }
 
 }  // namespace bsmpm

@@ -18,6 +18,7 @@
 #include "step/effects/rigid_motion.hpp"
 #include "step/effects/scene_tables.hpp"
 #include "step/effects/tank_walls.hpp"
+#include "step/incompressible/pressure_projection.hpp"
 
 namespace bsmpm {
 
@@ -57,7 +58,8 @@ using RegisteredEffects = EffectList<
     RigidMotion,
     LiLian2024Contact,
     TankWalls,
-    ClampedNodes>;
+    ClampedNodes,
+    PressureProjection>;
 
 // What the scene asks of each effect, by the type of its parameters:
 // `scene.effects.get<GravityParameters>()` is the gravity or nullptr when the scene has none.

@@ -93,7 +93,11 @@ RunCost predict_run_cost(const SceneDescription& scene) {
   for (const BodyDescription& b : scene.bodies) {
     // The wave speed at rest (docs/method.md §7) and the body's initial speed; a rigid body's
     // own prescribed speed instead.
-    const double speed = signal_speed(b.material, 1.0, b.velocity.norm()) + (is_fluid(b.material) ? c.flow_speed : 0.0);
+    double speed = signal_speed(b.material, 1.0, b.velocity.norm()) + (is_fluid(b.material) ? c.flow_speed : 0.0);
+    // An incompressible fluid carries no sound: its step is the flow's, or the viscous limit's
+    // (docs/method.md §12) where that is shorter.
+    if (const auto* f = std::get_if<IncompressibleFluid>(&b.material))
+      speed = std::max(speed, f->viscous_speed(std::min(h.x(), h.y())));
     if (speed > c.signal_speed) {
       c.signal_speed = speed;
       c.stiffest_body = b.name;

@@ -31,7 +31,9 @@ void seed_body(const SceneDescription& scene, const BodyDescription& desc, BodyI
   const double rho = density_of(desc.material);
   const GravityParameters* gravity = scene.effect_parameters<GravityParameters>();
   const auto* fluid = std::get_if<WeaklyCompressibleFluid>(&desc.material);
-  const bool hydrostatic = fluid && desc.initial_stress == InitialStress::kHydrostatic && gravity;
+  const bool incompressible = is_incompressible(desc.material);
+  const bool hydrostatic =
+      (fluid || incompressible) && desc.initial_stress == InitialStress::kHydrostatic && gravity;
   const Vec2 g = gravity ? gravity->vector() : Vec2::Zero();
   const Vec2 up = hydrostatic ? Vec2(-g / g.norm()) : Vec2(0.0, 1.0);
   double top = -std::numeric_limits<double>::infinity();
@@ -42,8 +44,8 @@ void seed_body(const SceneDescription& scene, const BodyDescription& desc, BodyI
     const Vec2& x = pts.positions[k];
     double J = 1.0, pressure = 0.0;
     if (hydrostatic) {
-      pressure = fluid->density * gravity->g * (top - up.dot(x));
-      J = fluid->volume_ratio(pressure);
+      pressure = rho * gravity->g * (top - up.dot(x));
+      if (fluid) J = fluid->volume_ratio(pressure);  // incompressible water keeps J = 1
     }
     const double V0 = pts.volumes[k] / J;
     ps.push_back(x, rho * V0, V0, id);
@@ -51,7 +53,8 @@ void seed_body(const SceneDescription& scene, const BodyDescription& desc, BodyI
     ps.v[p] = desc.velocity;
     ps.J[p] = J;
     ps.pressure[p] = pressure;
-    ps.stress[p] = -pressure * Mat2::Identity();
+    // An incompressible fluid's stress is its viscous part alone: the projection owns p.
+    ps.stress[p] = incompressible ? Mat2::Zero() : Mat2(-pressure * Mat2::Identity());
   }
   body.end = ps.size();
 }

@@ -246,6 +246,8 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
     mats.finish();
   }
   std::vector<TableReader> bodies = read_bodies(t, s, materials);
+  for (const auto& b : s.bodies)  // an incompressible fluid's pressure is an impulse per step (method.md §12)
+    if (is_incompressible(b.material)) s.time.even_steps_to_frames = true;
 
   // The effects read their own keys, some of them from tables shared with the loader.
   SceneTables scene{t, domain, solver ? &*solver : nullptr, s.domain(), {}};

@@ -33,6 +33,7 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
   for (auto& e : effects_) {
     if (e->hooks() & kHookGridForces) force_hooks_.push_back(e.get());
     if (e->hooks() & kHookConstrainVelocity) velocity_hooks_.push_back(e.get());
+    if (e->hooks() & kHookProjectVelocity) projection_hooks_.push_back(e.get());
   }
   st_.schedules.resize(st_.bodies.size());
   st_.weights.resize(st_.particles.size());
@@ -110,7 +111,17 @@ void BsmpmSimulation<P>::restore(Particles particles, const StepCounters& counte
   st_.step = counters.step;
   max_signal_speed_ = counters.max_signal_speed;
   stats_ = counters.stats;
+  std::size_t at = 0;
+  for (auto& e : effects_) at = e->load_state(counters.effect_state, at);
+  if (at != counters.effect_state.size()) throw std::invalid_argument("restore: the effects' state is not of this scene");
   for (std::size_t k = 0; k < probes.size(); ++k) probes_[k]->restore(probes[k]);
+}
+
+template <int P>
+std::vector<double> BsmpmSimulation<P>::effect_state() const {
+  std::vector<double> out;
+  for (const auto& e : effects_) e->save_state(out);
+  return out;
 }
 
 // The step of docs/method.md §2, pass by pass.
@@ -129,6 +140,7 @@ void BsmpmSimulation<P>::advance(double dt) {
   const auto constrain = [this](VelocityPhase phase) { this->constrain(phase); };
   update_grid_velocity(st_, dt, constrain);                 // steps 4-5: eqs. 9-10, essential conditions
   stats_.work += st_.diagnostics.work;                      // what the constraints did to the motion
+  stats_.pressure.add(st_.diagnostics.pressure);            // an incompressible fluid's solve (method.md §12)
   const ParticleShifting<P>* shifting = shifting_ ? &*shifting_ : nullptr;
   stats_.clamped_positions +=                               // step 6 and the remap's scatter: eqs. 11-13
       affine() ? move_particles_and_remap_momentum<P, true>(st_, dt, settings_.flip_fraction, shifting, affine_floor_)
@@ -144,12 +156,20 @@ void BsmpmSimulation<P>::advance(double dt) {
   sample_probes();
 }
 
+// The essential conditions; in the update phase then the projection of an incompressible
+// fluid's velocity (method.md §12), which sees every constraint and which the FLIP increment
+// and the particles see.
 template <int P>
 void BsmpmSimulation<P>::constrain(VelocityPhase phase) {
   for (auto* e : velocity_hooks_) {
     const PhaseScope timed(st_.timer, st_.timer && e->phase() == EffectPhase::kContact ? StepPhase::kContact
                                                                                          : StepPhase::kEffects);
     e->constrain_velocity(st_, phase);
+  }
+  if (phase != VelocityPhase::kUpdate) return;
+  for (auto* e : projection_hooks_) {
+    const PhaseScope timed(st_.timer, StepPhase::kProjection);
+    e->project_velocity(st_);
   }
 }
 

@@ -43,6 +43,7 @@ class BsmpmSimulation final : public Simulation {
   void sample_probes() override;
   void restore(Particles particles, const StepCounters& counters, const std::vector<ProbeState>& probes) override;
   void set_phase_timer(PhaseTimer* timer) override { st_.timer = timer; }
+  std::vector<double> effect_state() const override;
   MemoryUse memory_use() const override;
 
   // Exposed for the unit tests of the transfers.
@@ -57,7 +58,7 @@ class BsmpmSimulation final : public Simulation {
   StepState<P> st_;
   SolverSettings settings_;
   std::vector<std::unique_ptr<Effect<P>>> effects_;
-  std::vector<Effect<P>*> force_hooks_, velocity_hooks_;
+  std::vector<Effect<P>*> force_hooks_, velocity_hooks_, projection_hooks_;
   std::vector<std::unique_ptr<Probe>> probes_;
   // The passes that keep state from one step to the next (scratch arrays, grids of their own).
   ParticleSort sort_;

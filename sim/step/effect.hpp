@@ -16,6 +16,7 @@ namespace bsmpm {
 enum EffectHook : unsigned {
   kHookGridForces = 1u << 0,        // add nodal forces after P2G (eq. 8)
   kHookConstrainVelocity = 1u << 1, // essential conditions on nodal velocities
+  kHookProjectVelocity = 1u << 2,   // the constrained v_I^{k+1} projected (incompressible fluid, method.md §12)
 };
 
 // Where an effect runs within its hook: the step sorts its effects by phase (stably, so
@@ -27,6 +28,7 @@ enum class EffectPhase {
   kContact,           // exchanges momentum between fields: sees the prescribed motion
   kWalls,             // the tank's walls hold exactly, whatever contact did
   kClamps,            // clamped control points are at rest, last of all
+  kProjection,        // after every constraint: the pressure that keeps the fluid's volume
 };
 
 // The constraints run twice per step: on v_I^{k+1} (docs/method.md §2, step 5) and on the
@@ -47,6 +49,14 @@ class Effect {
   virtual std::string describe() const = 0;
   virtual void grid_forces(StepState<P>&) {}
   virtual void constrain_velocity(StepState<P>&, VelocityPhase) {}
+  // Once per step, on the constrained v_I^{k+1} of the update phase, before the particles
+  // read it (docs/method.md §2, between steps 5 and 6).
+  virtual void project_velocity(StepState<P>&) {}
+  // State an effect carries from one step to the next beyond the particles (e.g. the pressure
+  // the next solve starts from): appended to `out`; read back from `in` at `at`, returning
+  // where the next effect's starts. A checkpoint holds it, so a resumed run gives the same bits.
+  virtual void save_state(std::vector<double>& /*out*/) const {}
+  virtual std::size_t load_state(const std::vector<double>& /*in*/, std::size_t at) { return at; }
 };
 
 // The base of every effect E (CRTP): hooks() holds exactly the methods E overrides, so the
@@ -60,10 +70,12 @@ class EffectBase : public Effect<P> {
       mask |= kHookGridForces;
     if constexpr (!std::is_same_v<decltype(&E::constrain_velocity), decltype(&Effect<P>::constrain_velocity)>)
       mask |= kHookConstrainVelocity;
+    if constexpr (!std::is_same_v<decltype(&E::project_velocity), decltype(&Effect<P>::project_velocity)>)
+      mask |= kHookProjectVelocity;
     return mask;
   }
   unsigned hooks() const final {
-    static_assert(derived_hooks() != 0, "an effect overrides grid_forces, constrain_velocity or both");
+    static_assert(derived_hooks() != 0, "an effect overrides grid_forces, constrain_velocity or project_velocity");
     return derived_hooks();
   }
   EffectPhase phase() const final { return E::kPhase; }

@@ -21,6 +21,7 @@ enum class StepPhase : int {
   kEffects,         // effects' grid forces (eq. 8) and velocity constraints other than contact
   kContact,         // multi-body contact (EffectPhase::kContact)
   kGridUpdate,      // nodal velocities (eqs. 9-10) and the remapped velocities (eq. 13)
+  kProjection,      // the incompressible fluid's pressure: operator, solve, correction (method.md §12)
   kGridToParticle,  // G2P, positions and the momentum remap in one pass (eqs. 11-13)
   kStress,          // velocity gradient, deformation and constitutive update (eq. 14)
   kSmoothing,       // the fluid volume ratio fitted through the grid; for such a fluid, its
@@ -35,7 +36,7 @@ inline constexpr std::size_t kStepPhaseCount = static_cast<std::size_t>(StepPhas
 // Names as they appear in bench's output and JSON record.
 inline constexpr std::array<const char*, kStepPhaseCount> kStepPhaseNames = {
     "outside", "other", "sort", "weights", "particle_to_grid", "effects", "contact",
-    "grid_update", "grid_to_particle", "stress", "smoothing", "clear_grid", "probes"};
+    "grid_update", "projection", "grid_to_particle", "stress", "smoothing", "clear_grid", "probes"};
 
 class PhaseTimer {
  public:

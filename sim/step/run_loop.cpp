@@ -34,6 +34,7 @@ RunOutcome run_to_end(Simulation& sim, const TimeStepSettings& time, double fram
     const double remaining = target - sim.time();
     const bool landing = dt >= remaining * (1.0 - 1e-9);
     if (landing) dt = remaining;
+    else if (time.even_steps_to_frames) dt = remaining / std::ceil(remaining / dt - 1e-9);
     state.last_dt = dt;
     sim.advance(dt);
     if (!landing) {  // the shortened steps that land on frame times say nothing of stability

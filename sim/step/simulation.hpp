@@ -79,6 +79,13 @@ struct ContactImpulses {
   std::vector<Vec2> impulse;
 };
 
+// The pressure solve of the incompressible fluid in one step (docs/method.md §12).
+struct PressureSolve {
+  int unknowns = 0;       // vertices whose pressure was solved for (0: no solve this step)
+  int iterations = 0;     // conjugate-gradient iterations
+  double residual = 0.0;  // |b - A p| / |b| at the end
+};
+
 // What the last step did, for tests and diagnostics (and, later, wall-pressure sensors).
 struct StepDiagnostics {
   int contact_nodes = 0;         // control points where a contact force acted
@@ -89,9 +96,11 @@ struct StepDiagnostics {
   // deformable fields [N s/m]; its normal part over dt is the wall's reaction force there.
   std::array<std::vector<Vec2>, 4> wall_impulse;
   std::vector<ContactImpulses> contact;  // per pair of the contact effect
+  PressureSolve pressure;                // the incompressible fluid's, if any
 
   // Zeroes everything for the next step, keeping the arrays' storage.
   void reset() {
+    pressure = PressureSolve{};
     contact_nodes = 0;
     contact_impulse = 0.0;
     work = ConstraintWork{};
@@ -113,9 +122,25 @@ struct MemoryUse {
 class PhaseTimer;
 
 // Counters over the whole run (a checkpoint holds them).
+// The pressure solves of a run (docs/method.md §12): their count, iterations and residuals.
+struct PressureSolveStats {
+  long solves = 0;
+  long iterations = 0;          // summed over the solves
+  int max_iterations = 0;
+  double max_residual = 0.0;
+  void add(const PressureSolve& s) {
+    if (s.unknowns == 0) return;
+    ++solves;
+    iterations += s.iterations;
+    max_iterations = std::max(max_iterations, s.iterations);
+    max_residual = std::max(max_residual, s.residual);
+  }
+};
+
 struct SimulationStats {
   long clamped_positions = 0;  // particle positions pushed back inside the domain
   ConstraintWork work;         // the constraints' work since t = 0 [J/m]
+  PressureSolveStats pressure; // the incompressible fluid's solves
 };
 
 // The state of a run between two steps beyond its particles, which a checkpoint holds so
@@ -125,6 +150,7 @@ struct StepCounters {
   long step = 0;
   double max_signal_speed = 0.0;  // bounds the next time step (docs/method.md §7)
   SimulationStats stats;
+  std::vector<double> effect_state;  // what the effects carry between steps (Effect::save_state)
 };
 
 class Simulation {
@@ -145,7 +171,9 @@ class Simulation {
   virtual int layer_count() const = 0;
   virtual const SimulationStats& stats() const = 0;
   virtual const StepDiagnostics& last_step() const = 0;
-  StepCounters counters() const { return {time(), step_count(), max_signal_speed(), stats()}; }
+  StepCounters counters() const { return {time(), step_count(), max_signal_speed(), stats(), effect_state()}; }
+  // The effects' state between steps (Effect::save_state), in their order.
+  virtual std::vector<double> effect_state() const { return {}; }
   // Replaces the particles (in slot order, as particles() holds them), the counters and the
   // probes' states with a checkpoint's; the next advance() then continues as the run that
   // wrote it would have. The particles must be those this scene seeds (same count and bodies).

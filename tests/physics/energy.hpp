@@ -57,6 +57,7 @@ struct StoredEnergy {
     return -sum * step / 3.0;
   }
   double operator()(const RigidBody&) const { return 0.0; }
+  double operator()(const IncompressibleFluid&) const { return 0.0; }  // no compression, no stored energy
 };
 
 inline double stored_energy(const Simulation& sim) {

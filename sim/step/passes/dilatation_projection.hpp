@@ -60,9 +60,13 @@ class DilatationProjection {
           volume_[k] += s;
         }
     });
+    // The columns the scatter wrote, from the positions it used (the particles' current ones,
+    // which may have left the columns of the step's weights): all of them are cleared below.
+#pragma omp parallel for schedule(static) reduction(min : i_lo) reduction(max : i_hi)
     for (long p = begin; p < end; ++p) {
-      i_lo = std::min(i_lo, st.weights[p].i0);
-      i_hi = std::max(i_hi, st.weights[p].i0 + kSupport);
+      const int i0 = weights(ps.x[p]).i0;
+      i_lo = std::min(i_lo, i0);
+      i_hi = std::max(i_hi, i0 + kSupport);
     }
 #pragma omp parallel for schedule(static)
     for (long p = begin; p < end; ++p) {

@@ -32,7 +32,9 @@ class StressUpdate {
       : fluid_volume_(settings.fluid_volume),
         j_min_(1.0 / settings.max_density_ratio), j_max_(1.0 / settings.min_density_ratio),
         min_density_ratio_(settings.min_density_ratio), max_density_ratio_(settings.max_density_ratio) {
-    if (fluid_volume_ == SolverSettings::FluidVolume::kProjected) {
+    const bool incompressible = std::any_of(st.bodies.begin(), st.bodies.end(),
+                                            [](const Body& b) { return is_incompressible(b.material); });
+    if (fluid_volume_ == SolverSettings::FluidVolume::kProjected || incompressible) {
       projection_ = DilatationProjection<P>(st.grid);
       increment_.resize(st.particles.size());
       gradient_.resize(st.particles.size());
@@ -189,6 +191,42 @@ class StressUpdate {
       ps.pressure[p] = -0.5 * sigma.trace();
       body_speed = std::max(body_speed, mat.signal_speed(J, ps.v[p].norm()));
       body_invalid = body_invalid || !density_in_range(J) || !sigma.allFinite() || !finite(ps.v[p]) ||
+                     !finite(ps.x[p]);
+    }
+    return {body_speed, body_invalid};
+  }
+
+  // Incompressible fluid (method.md §12): the pressure is the projection's (already on the
+  // particles); here J and the viscous stress follow the projected velocity v^{k+1} at x^k,
+  // the velocity that moved the particles, so that J measures the volume they span. The
+  // volume increment is the pressure space's (projected onto the hats, as fluid_volume =
+  // "projected" does, method.md §10): the constraint holds the water's volume per hat, not
+  // per particle, and a particle's own increment drifts where the spline velocity's
+  // divergence does not vanish point by point (at a stagnation point on a wall).
+  Result update_body(StepState<P>& st, const BodyParticles& body, const IncompressibleFluid& mat, double dt) {
+    const int ny = st.grid.ny();
+    auto& ps = st.particles;
+    const std::vector<Vec2>& v = st.layers[st.bodies[body.index].layer].velocity;
+    const double viscous_speed = mat.viscous_speed(st.grid.cell_size().minCoeff());
+    const bool viscous = mat.viscosity > 0.0;
+#pragma omp parallel for schedule(static)
+    for (long p = body.begin; p < body.end; ++p) {
+      const Mat2 L = velocity_gradient<P>(st.weights[p], v, ny);
+      increment_[p] = (Mat2::Identity() + dt * L).determinant() - 1.0;
+      ps.stress[p] = viscous ? mat.viscous_stress(L) : Mat2::Zero();
+    }
+    {
+      const PhaseScope timed(st.timer, StepPhase::kSmoothing);
+      projection_.project(st, st.schedules[body.index], body.begin, body.end, increment_);
+    }
+    double body_speed = 0.0;
+    bool body_invalid = false;
+#pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
+    for (long p = body.begin; p < body.end; ++p) {
+      const double J = ps.J[p] * (1.0 + increment_[p]);
+      ps.J[p] = J;
+      body_speed = std::max(body_speed, std::max(mat.signal_speed(J, ps.v[p].norm()), viscous_speed));
+      body_invalid = body_invalid || !density_in_range(J) || !std::isfinite(ps.pressure[p]) || !finite(ps.v[p]) ||
                      !finite(ps.x[p]);
     }
     return {body_speed, body_invalid};
