@@ -32,18 +32,17 @@ import sys
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from run_csv import read_columns  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(ROOT, "tests", "data")
 BSMPM = os.environ.get("BSMPM", os.path.join(ROOT, "build", "render", "bsmpm"))
 
 
 def read_probe(path):
-    """A probe CSV (DIR/<probe>.csv): '#' comment, a header, rows."""
-    with open(path) as f:
-        lines = [l for l in f if not l.startswith("#")]
-    header = lines[0].strip().split(",")
-    rows = np.array([[float(x) for x in l.split(",")] for l in lines[1:] if l.strip()])
-    return {name: rows[:, k] for k, name in enumerate(header)}
+    """{column name: values} of a probe CSV (DIR/<probe>.csv), with units in its header or not."""
+    return read_columns(path)
 
 
 # -- 1. The elastic column: the closed form of docs/method.md §11 (d'Alembert) ------------
@@ -270,17 +269,116 @@ def pareto(points):
     return front
 
 
+def cases_from_csv(path):
+    """{problem: cases} from a CSV written with --csv: setting, error and wall time per case."""
+    results = {}
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            results.setdefault(row["problem"], []).append(
+                {"label": row["setting"], "error": float(row["error"]), "wall": float(row["wall_seconds"])})
+    return results
+
+
+def label_box(annotation, renderer):
+    """The window extent of an annotation's text alone (its leader line left out)."""
+    import matplotlib.text
+    annotation.update_positions(renderer)
+    return matplotlib.text.Text.get_window_extent(annotation, renderer)
+
+
+def place_labels(fig, ax, points, labels):
+    """Labels beside their points, each moved up or down in steps of its own height (with a
+    leader line) until it overlaps no label placed before it."""
+    renderer = fig.canvas.get_renderer()
+    placed, annotations = [], []
+    for (x, y), text in sorted(zip(points, labels)):
+        a = ax.annotate(text, (x, y), fontsize=6, xytext=(3, 2), textcoords="offset points",
+                        arrowprops=dict(arrowstyle="-", lw=0.3, color="0.6", shrinkA=0, shrinkB=2))
+        for step in range(1, 200):
+            box = label_box(a, renderer)
+            if not any(box.overlaps(b) for b in placed):
+                break
+            shift = 7 * ((step + 1) // 2) * (1 if step % 2 else -1)  # 7, -7, 14, -14, ... points
+            a.xyann = (3, 2 + shift)
+        placed.append(label_box(a, renderer))
+        annotations.append(a)
+    return annotations
+
+
+def draw_map(results, footer=""):
+    """The accuracy-cost map: a panel per problem (error against wall time, the Pareto front
+    labelled), and a last panel that says how to read them and the cheapest settings."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    n = len(results)
+    cols = min(n + 1, 3)
+    rows = (n + 1 + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(6.2 * cols, 5.0 * rows), squeeze=False)
+    panels = []
+    for ax, (problem, cases) in zip(axes.flat, results.items()):
+        title, _, what = PROBLEMS[problem]
+        x = [c["wall"] for c in cases]
+        y = [max(c["error"], 1e-6) for c in cases]
+        ax.scatter(x, y, s=14, color="tab:blue", zorder=3, label="a setting")
+        front = pareto(list(zip(x, y)))
+        ax.plot([x[i] for i in front], [y[i] for i in front], "-", color="tab:red", lw=1.2, zorder=2,
+                label="Pareto front (labelled)")
+        for target in (0.10, 0.05, 0.02):
+            ax.axhline(target, color="0.8", lw=0.6, zorder=1)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("wall time per run [s], 1 thread, 2-core machine")
+        ax.set_ylabel("relative error (%s)" % what)
+        ax.set_title(title, fontsize=10)
+        ax.legend(fontsize=7, loc="lower left")
+        ax.grid(True, which="both", alpha=0.25)
+        panels.append((ax, [(x[i], y[i]) for i in front], [cases[i]["label"] for i in front]))
+    key = list(axes.flat)[n]
+    key.axis("off")
+    lines = ["How to read the panels",
+             "Each point is one setting (grid, spline order, particles per cell,",
+             "velocity update, time step) against that problem's reference.",
+             "Red: the Pareto front, no setting both cheaper and more accurate;",
+             "its settings are labelled. Grey lines: 10, 5 and 2 % error.",
+             "", "The cheapest setting within 5 %:"]
+    for problem, cases in results.items():
+        ok = [c for c in cases if c["error"] <= 0.05]
+        best = min(ok, key=lambda c: c["wall"]) if ok else None
+        lines.append("  %s: %s" % (PROBLEMS[problem][0],
+                                   "%s, %.3g s" % (best["label"], best["wall"]) if best else "none"))
+    key.text(0.0, 1.0, "\n".join(lines), va="top", ha="left", fontsize=9, family="DejaVu Sans",
+             transform=key.transAxes)
+    for ax in list(axes.flat)[n + 1:]:
+        ax.axis("off")
+    fig.suptitle("What accuracy costs in time (docs/accuracy-cost.md)")
+    if footer:
+        fig.text(0.01, 0.005, footer, fontsize=7, color="0.4", va="bottom")
+    fig.tight_layout(rect=(0, 0.02, 1, 1))
+    fig.canvas.draw()  # the final layout: labels are placed in its coordinates
+    for ax, points, labels in panels:
+        place_labels(fig, ax, points, labels)
+    return fig
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     for name in PROBLEMS:
         ap.add_argument("--" + name.replace("_", "-"), dest=name, help="study output directory")
     ap.add_argument("--extra", action="append", nargs=3, default=[], metavar=("PROBLEM", "RUN_DIR", "LABEL"),
                     help="a single run of PROBLEM (e.g. made with bsmpm run) as one more case")
+    ap.add_argument("--from-csv", metavar="CSV",
+                    help="draw --png from a CSV this script wrote (media/accuracy_cost.csv), without the runs")
     ap.add_argument("--png")
     ap.add_argument("--csv")
     ap.add_argument("--markdown")
     args = ap.parse_args()
 
+    if args.from_csv:
+        results = cases_from_csv(args.from_csv)
+        if args.png:
+            draw_map(results, footer="data: " + os.path.relpath(args.from_csv, ROOT)).savefig(args.png, dpi=110)
+        return
     results, failures = {}, {}
     for problem, (title, error_of, _) in PROBLEMS.items():
         cases, failures[problem] = study_cases(problem, getattr(args, problem)) if getattr(args, problem) else ([], [])
@@ -358,39 +456,7 @@ def main():
         print(text)
 
     if args.png:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        n = len(results)
-        cols = min(n, 3)
-        rows = (n + cols - 1) // cols
-        fig, axes = plt.subplots(rows, cols, figsize=(6.2 * cols, 5.0 * rows), squeeze=False)
-        for ax, (problem, cases) in zip(axes.flat, results.items()):
-            title, _, what = PROBLEMS[problem]
-            x = [c["wall"] for c in cases]
-            y = [max(c["error"], 1e-6) for c in cases]
-            ax.scatter(x, y, s=14, color="tab:blue", zorder=3)
-            front = pareto(list(zip(x, y)))
-            ax.plot([x[i] for i in front], [y[i] for i in front], "-", color="tab:red", lw=1.2, zorder=2,
-                    label="Pareto front")
-            label_all = len(cases) <= 14
-            for i, c in enumerate(cases):
-                if label_all or i in front:
-                    ax.annotate(c["label"], (x[i], y[i]), fontsize=6, xytext=(3, 2), textcoords="offset points")
-            for target in (0.10, 0.05, 0.02):
-                ax.axhline(target, color="0.8", lw=0.6, zorder=1)
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            ax.set_xlabel("wall time [s], 1 thread, 2-core machine")
-            ax.set_ylabel("relative error (%s)" % what)
-            ax.set_title(title, fontsize=10)
-            ax.legend(fontsize=7, loc="lower left")
-            ax.grid(True, which="both", alpha=0.25)
-        for ax in list(axes.flat)[n:]:
-            ax.axis("off")
-        fig.suptitle("What accuracy costs in time (docs/accuracy-cost.md)")
-        fig.tight_layout()
-        fig.savefig(args.png, dpi=110)
+        draw_map(results, footer="data: the accuracy-cost studies' runs").savefig(args.png, dpi=110)
 
 
 if __name__ == "__main__":

@@ -41,8 +41,32 @@ def run_csv(command):
     return rows[0], np.array([[float(v) for v in r] for r in rows[1:]]).reshape(-1, len(rows[0]))
 
 
+def value_label(axis, label):
+    """An axis value as a legend shows it: its label, with the axis's unit when the label is
+    the bare number (grid = 0.01 m; a label such as "300 mm" says its own)."""
+    try:
+        float(label)
+    except (TypeError, ValueError):
+        return label
+    return f"{label} {axis['unit']}" if axis.get("unit") else label
+
+
 def case_label(plan, row, skip=()):
-    return ", ".join(f"{a['name']} = {row[a['name'] + '_label']}" for a in plan["axes"] if a["name"] not in skip)
+    return ", ".join(f"{a['name']} = {value_label(a, row[a['name'] + '_label'])}" for a in plan["axes"]
+                     if a["name"] not in skip)
+
+
+def plot_title(plan, plot):
+    """The plot's own title; without one, the study's title for its first plot (the figure the
+    study is for) and what the others show for the others (a cost plot must not carry the
+    figure's title)."""
+    if plot["title"]:
+        return plot["title"]
+    if plot is plan["plots"][0]:
+        return plan["title"]
+    what = plot["ylabel"] or ", ".join(plot["y"]) if plot["type"] != "series" else plot["column"]
+    return f"{plan['title']}: {what} against {plot['xlabel'] or plot['x']}" if plot["type"] == "metric" \
+        else f"{plan['title']}: {what}"
 
 
 def footnote(plan, fig):
@@ -61,17 +85,17 @@ def draw_fit(ax, kind, x, y, offset, color, fit_rows, plot, group):
 
 
 def metric_plot(plan, plot, rows, ax, fit_rows):
-    others = [a["name"] for a in plan["axes"] if a["name"] != plot["x"]]
+    others = [a for a in plan["axes"] if a["name"] != plot["x"]]
     groups = {}
     for r in rows:
-        groups.setdefault(tuple(r[o + "_label"] for o in others), []).append(r)
+        groups.setdefault(tuple(r[o["name"] + "_label"] for o in others), []).append(r)
     colors = itertools.cycle(plt.rcParams["axes.prop_cycle"].by_key()["color"])
     for group, members in groups.items():
         for y_name in plot["y"]:
             pts = sorted((number(r[plot["x"]]), number(r[y_name])) for r in members)
             x, y = np.array([p[0] for p in pts]), np.array([p[1] for p in pts])
             color = next(colors)
-            name = ", ".join(f"{o} = {g}" for o, g in zip(others, group))
+            name = ", ".join(f"{o['name']} = {value_label(o, g)}" for o, g in zip(others, group))
             label = (y_name if len(plot["y"]) > 1 else "") + (" " if len(plot["y"]) > 1 and name else "") + name
             ax.plot(x, y, "o-", color=color, label=label or y_name)
             if plot["fit"]:
@@ -116,6 +140,22 @@ def series_plot(plan, plot, rows, fig):
     axes[-1].set_xlabel(plot["xlabel"] or ("T* = t sqrt(g/H)" if plot["x"] == "T*" else "t [s]"))
 
 
+def draw_plot(plan, plot, rows, fit_rows):
+    """One of the study's [[plots]] as a matplotlib figure (its fits appended to fit_rows)."""
+    fig = plt.figure(figsize=(7.5, 3.2 * max(1, len(plot["probes"]))) if plot["type"] == "series" else (7.5, 5))
+    if plot["type"] == "series":
+        series_plot(plan, plot, rows, fig)
+    else:
+        ax = fig.subplots()
+        (metric_plot if plot["type"] == "metric" else profile_plot)(plan, plot, rows, ax, fit_rows)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle(plot_title(plan, plot), fontsize=11)
+    footnote(plan, fig)
+    fig.tight_layout(rect=(0, 0.02, 1, 1))
+    return fig
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -129,17 +169,7 @@ def main():
         rows = [r for r in csv.DictReader(f) if r["status"] == "completed"]
     fit_rows = []
     for plot in plan["plots"]:
-        fig = plt.figure(figsize=(7.5, 3.2 * max(1, len(plot["probes"]))) if plot["type"] == "series" else (7.5, 5))
-        if plot["type"] == "series":
-            series_plot(plan, plot, rows, fig)
-        else:
-            ax = fig.subplots()
-            (metric_plot if plot["type"] == "metric" else profile_plot)(plan, plot, rows, ax, fit_rows)
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=7)
-        fig.suptitle(plot["title"] or plan["title"], fontsize=11)
-        footnote(plan, fig)
-        fig.tight_layout(rect=(0, 0.02, 1, 1))
+        fig = draw_plot(plan, plot, rows, fit_rows)
         fig.savefig(plot["name"] + ".png", dpi=110)
         plt.close(fig)
         print(f"plot_study: wrote {plot['name']}.png")

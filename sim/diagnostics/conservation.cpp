@@ -35,6 +35,12 @@ const std::vector<std::string>& conservation_columns() {
   return columns;
 }
 
+const std::vector<std::string>& conservation_units() {
+  static const std::vector<std::string> units = {"s",   "1",   "kg/m", "kg/s", "kg/s", "J/m", "J/m",
+                                                 "J/m", "J/m", "J/m",  "J/m",  "J/m",  "J/m", "J/m"};
+  return units;
+}
+
 std::vector<double> conservation_row(const ConservationTotals& c) {
   return {c.time,    static_cast<double>(c.step),
           c.mass,    c.momentum.x(),

@@ -32,6 +32,7 @@ ConservationTotals measure_conservation(const Simulation& sim, const Vec2& gravi
 
 // The columns of the conservation series, and one row of it.
 const std::vector<std::string>& conservation_columns();
+const std::vector<std::string>& conservation_units();  // per column, SI per metre of depth
 std::vector<double> conservation_row(const ConservationTotals& c);
 
 }  // namespace bsmpm

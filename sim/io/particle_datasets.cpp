@@ -31,6 +31,9 @@ void write_particle_dataset(hid_t group, const ParticleField& field, const Parti
     case FieldType::kUInt16: write_integers<std::uint16_t>(group, name, buffer); break;
     case FieldType::kUInt32: write_integers<std::uint32_t>(group, name, buffer); break;
   }
+  h5::Handle set(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "opening dataset " + name);
+  h5::set_attribute(set, "units", std::string(field.unit));
+  if (!field.component_names.empty()) h5::set_attribute(set, "components", std::string(field.component_names));
 }
 
 std::size_t field_value_bytes(const ParticleField& field) {

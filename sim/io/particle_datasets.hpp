@@ -13,7 +13,8 @@
 namespace bsmpm {
 
 // Writes `field` as the dataset `field.name` under `group`, in the field's own type (float64
-// [N, components], uint16 [N] or uint32 [N]): row
+// [N, components], uint16 [N] or uint32 [N]) with the attributes `units` (its unit) and, with
+// several components, `components` ("x,y", "xx,yy,xy"): row
 // k holds the particle in slot (*slot_of_row)[k], or in slot k when slot_of_row is null.
 // `buffer` is scratch space, kept between calls so that frames allocate nothing new.
 void write_particle_dataset(hid_t group, const ParticleField& field, const Particles& particles,

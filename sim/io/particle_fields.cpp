@@ -49,13 +49,16 @@ constexpr ParticleField state(std::string_view name, std::string_view unit, unsi
                          : std::is_same_v<T, std::uint32_t> ? FieldType::kUInt32
                                                             : FieldType::kFloat64;
   const int components = std::is_same_v<T, Vec2> ? 2 : std::is_same_v<T, Mat2> ? 4 : 1;
-  return {name, type, components, unit, use | kCheckpointState, &get_state<Array>, &set_state<Array>};
+  const std::string_view names = components == 2 ? "x,y" : components == 4 ? "xx,xy,yx,yy" : "";
+  return {name, type, components, unit, names, use | kCheckpointState, &get_state<Array>, &set_state<Array>};
 }
 
 // A field computed from the state, for output only.
 constexpr ParticleField derived(std::string_view name, int components, std::string_view unit, unsigned use,
-                                void (*get)(const Particles&, std::size_t, double*)) {
-  return {name, FieldType::kFloat64, components, unit, use, get, nullptr};
+                                void (*get)(const Particles&, std::size_t, double*),
+                                std::string_view names = "") {
+  return {name, FieldType::kFloat64, components, unit, names.empty() && components == 2 ? "x,y" : names, use, get,
+          nullptr};
 }
 
 // The XDMF attributes follow this order (pressure first: what ParaView shows first).
@@ -72,7 +75,8 @@ constexpr ParticleField kFields[] = {
               out[0] = s(0, 0);
               out[1] = s(1, 1);
               out[2] = s(0, 1);
-            }),
+            },
+            "xx,yy,xy"),
     derived("volume", 1, "m2", kInFrames | kXdmfAttribute,
             [](const Particles& ps, std::size_t p, double* out) { out[0] = ps.volume(p); }),
     state<&Particles::body>("body", "1", kInRunHeader | kXdmfAttribute),
@@ -89,6 +93,17 @@ constexpr ParticleField kFields[] = {
 }  // namespace
 
 std::span<const ParticleField> particle_fields() { return kFields; }
+
+std::vector<std::string> component_names(const ParticleField& field) {
+  std::vector<std::string> names;
+  std::string_view rest = field.component_names;
+  while (!rest.empty()) {
+    const auto comma = rest.find(',');
+    names.emplace_back(rest.substr(0, comma));
+    rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
+  }
+  return names;
+}
 
 const ParticleField& particle_field(std::string_view name) {
   for (const ParticleField& f : kFields)

@@ -6,7 +6,9 @@
 
 #include <cstddef>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "particles/particles.hpp"
 
@@ -28,6 +30,7 @@ struct ParticleField {
   FieldType type;
   int components;
   std::string_view unit;  // SI, per metre of depth in 2D; "1" when dimensionless
+  std::string_view component_names;  // "x,y", "xx,yy,xy", ...; empty for one component
   unsigned use;           // FieldUse bits
   // The components of the particle in slot p, into out[0 .. components).
   void (*get)(const Particles& particles, std::size_t p, double* out);
@@ -39,6 +42,9 @@ struct ParticleField {
 };
 
 std::span<const ParticleField> particle_fields();
+
+// The field's component names, split: {"xx", "yy", "xy"}; empty for one component.
+std::vector<std::string> component_names(const ParticleField& field);
 
 // The entry called `name`; throws std::logic_error when there is none (a programming error).
 const ParticleField& particle_field(std::string_view name);

@@ -207,6 +207,7 @@ RunProbeSeries RunReader::probe(const std::string& name) const {
     RunProbeSeries series;
     series.name = name;
     series.columns = split_columns(h5::get_string_attribute(set, "columns"));
+    if (h5::has_attribute(set, "units")) series.units = split_columns(h5::get_string_attribute(set, "units"));
     series.description = h5::get_string_attribute(set, "description");
     series.values = h5::read_doubles(g, name);
     const auto shape = h5::dataset_shape(g, name);

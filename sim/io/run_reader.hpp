@@ -47,6 +47,7 @@ struct RunProbeSeries {
   std::string name;
   std::string description;
   std::vector<std::string> columns;
+  std::vector<std::string> units;  // per column ("s", "Pa", "1"); empty in files written before units
   std::size_t rows = 0;
   std::vector<double> values;  // row-major, rows x columns.size()
 };

@@ -61,6 +61,15 @@ std::string joined(const std::vector<std::string>& items) {
   return out;
 }
 
+// The CSV header: each column's name and unit, "t [s]", a number without unit bare ("T*"):
+// the name is what precedes " [" (docs/output-format.md).
+std::vector<std::string> labelled(const std::vector<std::string>& columns, const std::vector<std::string>& units) {
+  std::vector<std::string> out;
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    out.push_back(units[c] == "1" ? columns[c] : columns[c] + " [" + units[c] + "]");
+  return out;
+}
+
 // The field's dataset under `group`: one row per particle, in id order (the order of every
 // frame); `buffer` is scratch space.
 void write_particle_field(hid_t group, const ParticleField& field, const Simulation& sim, std::vector<double>& buffer) {
@@ -132,9 +141,12 @@ RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, co
       const auto cols = probe->columns();
       probe_sets_.emplace_back(g, probe->name(), cols.size());
       h5::Handle set(H5Dopen2(g, probe->name().c_str(), H5P_DEFAULT), "probe dataset");
+      const auto units = probe->units();
       h5::set_attribute(set, "columns", joined(cols));
+      h5::set_attribute(set, "units", joined(units));
       h5::set_attribute(set, "description", probe->describe());
-      probe_csv_.push_back(create_csv(directory_ + "/" + probe->name() + ".csv", probe->describe(), cols));
+      probe_csv_.push_back(
+          create_csv(directory_ + "/" + probe->name() + ".csv", probe->describe(), labelled(cols, units)));
       probe_rows_done_.push_back(0);
     }
   }
@@ -143,10 +155,11 @@ RunWriter::RunWriter(const std::string& directory, const RunProvenance& prov, co
     conservation_set_ = h5::RowAppender(file_, "conservation", cols.size(), kConservationChunkRows);
     h5::Handle set(H5Dopen2(file_, "conservation", H5P_DEFAULT), "conservation dataset");
     h5::set_attribute(set, "columns", joined(cols));
+    h5::set_attribute(set, "units", joined(conservation_units()));
     conservation_csv_ = create_csv(directory_ + "/conservation.csv",
                                    "mass, momentum, energy and work of the deformable bodies per frame "
                                    "(docs/output-format.md)",
-                                   cols);
+                                   labelled(cols, conservation_units()));
   }
   rows_covered_.assign(probe_rows_done_.size(), 0);
   h5::flush(file_, h5_path_);
@@ -394,10 +407,26 @@ void RunWriter::write_xdmf() const {
       x << "    </Geometry>\n";
       for (const ParticleField& field : particle_fields()) {
         if (!field.has(kXdmfAttribute)) continue;
-        x << "    <Attribute Name=\"" << field.name << "\" AttributeType=\""
-          << (field.components > 1 ? "Vector" : "Scalar") << "\" Center=\"Node\">\n";
-        data_item(field);
-        x << "    </Attribute>\n";
+        if (field.components <= 2) {
+          x << "    <Attribute Name=\"" << field.name << "\" AttributeType=\""
+            << (field.components > 1 ? "Vector" : "Scalar") << "\" Center=\"Node\">\n";
+          data_item(field);
+          x << "    </Attribute>\n";
+          continue;
+        }
+        // A tensor's components (the in-plane stress xx, yy, xy) as scalars of their own,
+        // "stress_xx", ...: XDMF has no 2D symmetric tensor, and read as a Vector ParaView
+        // would show its three components as x, y, z.
+        const auto names = component_names(field);
+        for (std::size_t c = 0; c < names.size(); ++c) {
+          x << "    <Attribute Name=\"" << field.name << "_" << names[c] << "\" AttributeType=\"Scalar\" "
+            << "Center=\"Node\">\n"
+            << "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << n << " 1\" Type=\"HyperSlab\">\n"
+            << "      <DataItem Dimensions=\"3 2\" Format=\"XML\">0 " << c << " 1 1 " << n << " 1</DataItem>\n"
+            << " ";
+          data_item(field);
+          x << "     </DataItem>\n    </Attribute>\n";
+        }
       }
       x << "   </Grid>\n";
     }

@@ -19,6 +19,7 @@ class FrontProbe final : public Probe {
 
   static std::vector<std::string> column_names() { return {"t", "T*", "front"}; }
   std::vector<std::string> columns() const override { return column_names(); }
+  std::vector<std::string> units() const override { return {"s", "1", "m"}; }
   std::string describe() const override;
 
  protected:

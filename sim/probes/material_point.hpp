@@ -36,6 +36,7 @@ class MaterialPointProbe final : public Probe {
       : Probe(std::move(name), interval), point_(point), body_name_(std::move(body_name)) {}
   static std::vector<std::string> column_names() { return {"t", "dx", "dy", "x", "y"}; }
   std::vector<std::string> columns() const override { return column_names(); }
+  std::vector<std::string> units() const override { return {"s", "m", "m", "m", "m"}; }
   std::string describe() const override;
 
  protected:

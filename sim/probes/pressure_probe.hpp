@@ -30,6 +30,8 @@ class PressureProbe final : public Probe {
 
   static std::vector<std::string> column_names() { return {"t", "T*", "P", "P*"}; }
   std::vector<std::string> columns() const override { return column_names(); }
+  static std::vector<std::string> column_units() { return {"s", "1", "Pa", "1"}; }
+  std::vector<std::string> units() const override { return column_units(); }
   std::string describe() const override;
 
   // Mean fluid pressure over the footprint at (centre, normal); 0 when dry.

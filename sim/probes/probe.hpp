@@ -46,6 +46,8 @@ class Probe {
 
   const std::string& name() const { return name_; }
   virtual std::vector<std::string> columns() const = 0;
+  // The unit of each column ("s", "Pa", "m"; "1" for a number without unit).
+  virtual std::vector<std::string> units() const = 0;
   virtual std::string describe() const = 0;
 
   // Samples when the interval since the last sample has elapsed (every call if 0).

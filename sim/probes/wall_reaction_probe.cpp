@@ -12,6 +12,7 @@ WallReactionProbe::WallReactionProbe(std::string name, double interval, int wall
       share_(std::move(share)), scales_(scales) {}
 
 std::vector<std::string> WallReactionProbe::columns() const { return PressureProbe::column_names(); }
+std::vector<std::string> WallReactionProbe::units() const { return PressureProbe::column_units(); }
 
 std::string WallReactionProbe::describe() const {
   return format("%s: reaction of the %s wall at %.4g m, face %g mm", name().c_str(), wall_side_name(wall_), centre_,

@@ -19,6 +19,7 @@ class WallReactionProbe final : public Probe {
                     std::vector<double> share, ReferenceScales scales);
 
   std::vector<std::string> columns() const override;  // a pressure probe's
+  std::vector<std::string> units() const override;
   std::string describe() const override;
 
  protected:

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <thread>
+#include <tuple>
 
 #include "io/hdf5.hpp"
 #include "test_support.hpp"
@@ -61,17 +62,55 @@ TEST_CASE("bsmpm run writes the run file, the XDMF sidecar and the probe CSVs", 
   h5::Handle frame = h5::open_group(h5::open_group(f, "frames"), "000002");
   CHECK(h5::get_double_attribute(frame, "time") == Approx(0.02));
   CHECK(h5::dataset_shape(frame, "stress") == std::vector<std::size_t>{n, 3});
+  // Units in the file: every particle dataset has its own, the probes and conservation series
+  // one per column.
+  for (const auto& [group, name, unit] : std::vector<std::tuple<hid_t, std::string, std::string>>{
+           {frame, "position", "m"}, {frame, "velocity", "m/s"}, {frame, "pressure", "Pa"}, {frame, "stress", "Pa"},
+           {frame, "volume", "m2"}, {particles, "mass", "kg/m"}, {particles, "body", "1"}}) {
+    INFO(name);
+    h5::Handle set(H5Dopen2(group, name.c_str(), H5P_DEFAULT), name);
+    CHECK(h5::get_string_attribute(set, "units") == unit);
+  }
+  {
+    h5::Handle stress(H5Dopen2(frame, "stress", H5P_DEFAULT), "stress");
+    CHECK(h5::get_string_attribute(stress, "components") == "xx,yy,xy");
+    h5::Handle conservation(H5Dopen2(f, "conservation", H5P_DEFAULT), "conservation");
+    CHECK(h5::get_string_attribute(conservation, "units") == "s,1,kg/m,kg/s,kg/s,J/m,J/m,J/m,J/m,J/m,J/m,J/m,J/m,J/m");
+  }
 
-  // One CSV per probe with a header row, and the same rows in run.h5.
+  // One CSV per probe with a header row of names and units (a number without unit bare), and
+  // the same rows in run.h5, whose columns and units are attributes.
   const std::string csv = read_text(dir / "P_depth100.csv");
-  CHECK(csv.find("\nt,T*,P,P*\n") != std::string::npos);
+  CHECK(csv.find("\nt [s],T*,P [Pa],P*\n") != std::string::npos);
+  CHECK(read_text(dir / "conservation.csv").find("\nt [s],step,mass [kg/m],momentum_x [kg/s],") != std::string::npos);
   h5::Handle probes = h5::open_group(f, "probes");
+  {
+    h5::Handle set(H5Dopen2(probes, "P_depth100", H5P_DEFAULT), "probe");
+    CHECK(h5::get_string_attribute(set, "columns") == "t,T*,P,P*");
+    CHECK(h5::get_string_attribute(set, "units") == "s,1,Pa,1");
+  }
   const auto shape = h5::dataset_shape(probes, "P_depth100");
   REQUIRE(shape.size() == 2);
   CHECK(shape[1] == 4);
   const auto lines = std::count(csv.begin(), csv.end(), '\n');
   CHECK(static_cast<std::size_t>(lines) == shape[0] + 2);  // comment + header + rows
-  CHECK(read_text(dir / "run.xdmf").find("run.h5:/frames/000002/position") != std::string::npos);
+  const std::string xdmf = read_text(dir / "run.xdmf");
+  CHECK(xdmf.find("run.h5:/frames/000002/position") != std::string::npos);
+  // The stress as its three named components, each a hyperslab (column c) of the dataset;
+  // no Vector of three components, which ParaView would show as x, y, z.
+  const std::string count = std::to_string(n);
+  for (int c = 0; c < 3; ++c) {
+    const std::string name = std::string("stress_") + (c == 0 ? "xx" : c == 1 ? "yy" : "xy");
+    const std::string item = "<Attribute Name=\"" + name + "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+                             "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"" + count + " 1\" Type=\"HyperSlab\">\n"
+                             "      <DataItem Dimensions=\"3 2\" Format=\"XML\">0 " + std::to_string(c) + " 1 1 " + count +
+                             " 1</DataItem>\n"
+                             "      <DataItem Dimensions=\"" + count + " 3\" NumberType=\"Float\" Precision=\"8\" "
+                             "Format=\"HDF\">run.h5:/frames/000002/stress</DataItem>";
+    INFO(item);
+    CHECK(xdmf.find(item) != std::string::npos);
+  }
+  CHECK(xdmf.find("<Attribute Name=\"stress\"") == std::string::npos);
 }
 
 TEST_CASE("bsmpm run refuses to overwrite a run without --force", "[cli][output]") {
