@@ -74,8 +74,8 @@ Particles read_particles(hid_t group, std::size_t n) {
   return ps;
 }
 
-// An upper bound of the checkpoint's size: the state fields and the probes' rows (its raw
-// data, exactly), the scene's text and the attributes and object headers (h5stat: 14.4 KiB of
+// An upper bound of the checkpoint's size: the state fields, the probes' rows and the
+// effects' state (its raw data, exactly), the scene's text and the attributes and object headers (h5stat: 14.4 KiB of
 // metadata for the Lobovsky tank's checkpoint with its 3.6 KiB of scene text).
 std::uint64_t checkpoint_bytes(const CheckpointScene& scene, const Simulation& sim) {
   std::uint64_t bytes = 24 * 1024 + scene.text.size() + scene.command_line.size();
@@ -83,6 +83,7 @@ std::uint64_t checkpoint_bytes(const CheckpointScene& scene, const Simulation& s
   for (const ParticleField& field : particle_fields())
     if (field.has(kCheckpointState)) bytes += sim.particles().size() * field_value_bytes(field);
   for (const auto& probe : sim.probes()) bytes += probe->data().size() * sizeof(double) + 1024;
+  bytes += sim.counters().effect_state.size() * sizeof(double);  // the effects' own state (a pressure field)
   return bytes;
 }
 
