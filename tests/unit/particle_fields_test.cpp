@@ -59,7 +59,10 @@ TEST_CASE("docs/output-format.md lists the particle fields of the run file", "[o
   std::map<std::string, DocumentedField> table;
   std::vector<std::string> xdmf_attributes;
   for (const ParticleField& field : particle_fields()) {
-    if (field.has(kXdmfAttribute)) xdmf_attributes.emplace_back(field.name);
+    // A tensor (more than two components) goes to the sidecar as a scalar per component.
+    if (field.has(kXdmfAttribute) && field.components <= 2) xdmf_attributes.emplace_back(field.name);
+    if (field.has(kXdmfAttribute) && field.components > 2)
+      for (const std::string& c : component_names(field)) xdmf_attributes.push_back(std::string(field.name) + "_" + c);
     if (!field.has(kInFrames) && !field.has(kInRunHeader)) continue;
     table[std::string(field.name)] = {field.has(kInFrames), type_name(field.type), field.components,
                                       std::string(field.unit)};
