@@ -1,5 +1,7 @@
 #include "scene/run_guards.hpp"
 
+#include <sys/resource.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -35,14 +37,22 @@ double cgroup_headroom() {
   }
 }
 
+// The process's address-space limit (`ulimit -v`, RLIMIT_AS), -1 when there is none: no
+// allocation past it succeeds, whatever the machine has.
+double address_space_limit() {
+  struct rlimit limit {};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return -1.0;
+  return static_cast<double>(limit.rlim_cur);
+}
+
 }  // namespace
 
 MachineResources machine_resources(const std::string& directory) {
   MachineResources m;
   m.available_memory_bytes = meminfo_available();
-  const double headroom = cgroup_headroom();
-  if (headroom >= 0.0 && (m.available_memory_bytes < 0.0 || headroom < m.available_memory_bytes))
-    m.available_memory_bytes = headroom;
+  for (const double limit : {cgroup_headroom(), address_space_limit()})
+    if (limit >= 0.0 && (m.available_memory_bytes < 0.0 || limit < m.available_memory_bytes))
+      m.available_memory_bytes = limit;
   if (!directory.empty()) {
     m.free_disk_bytes = free_disk_bytes(directory);
     m.file_size_limit_bytes = bsmpm::file_size_limit_bytes();

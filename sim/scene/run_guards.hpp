@@ -20,7 +20,8 @@ struct MachineResources {
   double file_size_limit_bytes = HUGE_VAL;  // ulimit -f
 };
 
-// Memory the kernel can give without swapping (MemAvailable, capped by a cgroup v2 limit), and
+// Memory the kernel can give without swapping (MemAvailable, capped by a cgroup v2 limit and
+// by the process's address-space limit, ulimit -v), and
 // the free space of the file system that holds `directory` (or its nearest existing parent;
 // none asked when `directory` is empty) and the size a file may reach (ulimit -f).
 MachineResources machine_resources(const std::string& directory);

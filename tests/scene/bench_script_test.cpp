@@ -93,8 +93,12 @@ TEST_CASE("scripts/bench --compare OLD.json runs OLD's case again", "[cli][bench
 
 TEST_CASE("scripts/bench --smoothing-cost adds the smoothing's share of the step, from a run without it",
           "[cli][bench]") {
-  const auto r = bench_script("--no-reference --threads 1 --steps 2 --smoothing-cost " +
-                              test::scene_path("hydrostatic_tank.toml"));
+  // The share is a timing, the machine's business; what the script owes is the second run
+  // (the same case with the particles' own volume) and the share of the two records it kept.
+  const fs::path saved = scratch() / "smoothing_records";
+  fs::remove_all(saved);
+  const auto r = bench_script("--no-reference --threads 1 --steps 2 --save " + saved.string() + " --smoothing-cost " +
+                              test::scene_path("lobovsky_h300.toml") + "@0.02");
   INFO(r.output);
   REQUIRE(r.status == 0);
   std::istringstream lines(r.output);
@@ -107,8 +111,24 @@ TEST_CASE("scripts/bench --smoothing-cost adds the smoothing's share of the step
   std::string scene;
   double cell = 0, threads = 0, particles = 0, ms = 0, rate = 0, share = std::nan("");
   words >> scene >> cell >> threads >> particles >> ms >> rate >> share;
-  CHECK(scene == "hydrostatic_tank");
-  CHECK(particles == 6400);
-  CHECK(std::isfinite(share));  // a percentage of a timing: its value is this machine's business
-  CHECK(share < 100.0);
+  CHECK(scene == "lobovsky_h300");
+  // DIR/SCENE@CELL_t1.json and DIR/SCENE@CELL_t1_particle_volume.json (CELL: the actual size).
+  std::string with, without;
+  int records = 0;
+  for (const auto& entry : fs::directory_iterator(saved)) {
+    const std::string name = entry.path().filename().string();
+    ++records;
+    (name.find("_t1_particle_volume.json") != std::string::npos ? without : with) = test::read_text(entry.path());
+  }
+  CHECK(records == 2);
+  INFO(with << "\n" << without);
+  CHECK(without.find("solver.fluid_volume=\\\"particle\\\"") != std::string::npos);
+  CHECK(with.find("fluid_volume") == std::string::npos);
+  auto per_step = [](const std::string& json) {
+    const auto at = json.find("\"seconds_per_step\": ");
+    REQUIRE(at != std::string::npos);
+    return std::stod(json.substr(at + 20));
+  };
+  // The printed share (one decimal) is 100 (t_with - t_without) / t_with.
+  CHECK(share == Approx(100.0 * (per_step(with) - per_step(without)) / per_step(with)).margin(0.05));
 }
