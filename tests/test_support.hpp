@@ -24,6 +24,9 @@ namespace bsmpm::test {
 
 inline std::string source_path(const std::string& relative) { return std::string(BSMPM_SOURCE_DIR) + "/" + relative; }
 inline std::string scene_path(const std::string& name) { return source_path("scenes/" + name); }
+// A test fixture: a small scene several tests (or one test, kept out of its code) run, in
+// tests/scenes/.
+inline std::string fixture_path(const std::string& name) { return source_path("tests/scenes/" + name); }
 
 // An empty directory `name` in this test process's scratch space (under the system's temp
 // directory); the whole scratch space is removed when the process exits.

@@ -9,8 +9,8 @@
 #include "cli/progress.hpp"
 #include "cli/render_arguments.hpp"
 #include "core/error.hpp"
-#include "figure/figure_renderer.hpp"
-#include "figure/run_figures.hpp"
+#include "compose/figure_renderer.hpp"
+#include "compose/run_figures.hpp"
 #include "io/run_reader.hpp"
 #include "movie/movie_encoder.hpp"
 

@@ -11,8 +11,8 @@
 #include "cli/progress.hpp"
 #include "cli/render_arguments.hpp"
 #include "core/error.hpp"
-#include "figure/figure_renderer.hpp"
-#include "figure/run_figures.hpp"
+#include "compose/figure_renderer.hpp"
+#include "compose/run_figures.hpp"
 #include "image/png_file.hpp"
 #include "io/run_reader.hpp"
 

@@ -51,15 +51,15 @@ CaseState StudyProgress::state(const std::string& key) const {
   return CaseState::kWaiting;
 }
 
-double StudyProgress::wall_seconds(const std::string& key) {
+std::optional<double> StudyProgress::wall_seconds(const std::string& key) {
   const auto it = wall_.find(key);
   if (it != wall_.end()) return it->second;
-  double wall = -1.0;
+  double wall = 0.0;
   try {
     wall = read_run_summary((cases_ / key).string()).wall_seconds;
   } catch (const std::exception&) {
     // A summary still being renamed into place: read it next time.
-    return -1.0;
+    return std::nullopt;
   }
   wall_[key] = wall;
   return wall;
@@ -76,8 +76,7 @@ StudyStatus StudyProgress::poll() {
       case CaseState::kDone: {
         ++s.done;
         if (!written_since_start(key, "metrics.json")) ++s.reused;
-        const double w = wall_seconds(key);
-        if (w >= 0.0) wall_sum += w, ++wall_count;
+        if (const auto w = wall_seconds(key)) wall_sum += *w, ++wall_count;
         break;
       }
       case CaseState::kFailed:
@@ -111,7 +110,7 @@ std::string StudyProgress::line(const StudyStatus& s) const {
   const std::string reused = s.reused ? " (" + std::to_string(s.reused) + " reused)" : "";
   return format("%d/%zu done%s, %d running, %d failed, %d waiting  elapsed %s  ETA %s", s.done, keys_.size(),
                 reused.c_str(), s.running, s.failed, s.waiting, format_duration(elapsed).c_str(),
-                s.eta_seconds < 0.0 ? "--" : format_duration(s.eta_seconds).c_str());
+                s.eta_seconds ? format_duration(*s.eta_seconds).c_str() : "--");
 }
 
 }  // namespace bsmpm::cli

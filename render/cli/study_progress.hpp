@@ -9,6 +9,7 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,7 @@ enum class CaseState { kWaiting, kRunning, kDone, kFailed, kInterrupted };
 
 struct StudyStatus {
   int done = 0, reused = 0, running = 0, failed = 0, waiting = 0, interrupted = 0;
-  double eta_seconds = -1.0;  // unknown until a case has finished
+  std::optional<double> eta_seconds;  // unknown until a case has finished
   std::vector<std::string> failed_keys;
 };
 
@@ -34,7 +35,7 @@ class StudyProgress {
  private:
   // True if `key`'s marker `name` exists and was not there, with this time, at construction.
   bool written_since_start(const std::string& key, const char* name) const;
-  double wall_seconds(const std::string& key);  // from the case's summary.json, cached
+  std::optional<double> wall_seconds(const std::string& key);  // from the case's summary.json, cached
 
   std::filesystem::path cases_;
   std::vector<std::string> keys_;

@@ -10,6 +10,8 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "gl/gl_state_guard.hpp"
 
 namespace bsmpm::render {
 
@@ -17,10 +19,15 @@ namespace {
 
 enum Attribute : unsigned { kPosition = 0, kColor, kAxis, kSupportA, kSupportB, kReach };
 
+// Every splat keeps at least the pixel its particle falls in: a radius of half a pixel's
+// diagonal, so that a particle never disappears at a coarse resolution (in the shader and in
+// the size check of draw()).
+constexpr float kLeastSplatPixels = 0.71f;
+
 // Compatibility-profile GLSL 1.30 (flat varyings; the fixed-function matrices). Sizes in
-// pixels. Every splat keeps at least the pixel its particle falls in (half a pixel's
-// diagonal), so that a particle never disappears at a coarse resolution.
-const char* kVertexShader = R"(#version 130
+// pixels.
+
+const std::string kVertexShader = std::string(R"(#version 130
 uniform float pixels_per_unit;
 in vec2 position;
 in vec4 color;
@@ -35,7 +42,7 @@ flat out vec4 splat_support_b;
 flat out float splat_reach;
 flat out float splat_size;
 void main() {
-  const float kLeast = 0.71;
+)") + "  const float kLeast = " + shortest(static_cast<double>(kLeastSplatPixels)) + ";" + R"(
   gl_Position = gl_ModelViewProjectionMatrix * vec4(position, 0.0, 1.0);
   splat_color = color;
   splat_axis = axis;
@@ -50,7 +57,7 @@ void main() {
 
 // gl_PointCoord runs from the lower left (GL_POINT_SPRITE_COORD_ORIGIN), as the world does.
 // Depth: distance to the particle, so that the depth test keeps the nearest particle.
-const char* kFragmentShader = R"(#version 130
+const std::string kFragmentShader = std::string(R"(#version 130
 uniform float depth_scale;
 flat in vec4 splat_color;
 flat in vec2 splat_axis;
@@ -64,7 +71,8 @@ void main() {
   if (r > splat_reach) discard;
   // Along u_0 .. u_7: u_0 = axis, each next one turned by 45 degrees.
   vec2 f = vec2(dot(p, splat_axis), dot(p, vec2(-splat_axis.y, splat_axis.x)));
-  vec4 along = vec4(f.x, 0.70710678 * (f.x + f.y), f.y, 0.70710678 * (f.y - f.x));
+)") + "  const float kHalfSqrt2 = " + shortest(static_cast<double>(kHalfSqrt2)) + ";" + R"(
+  vec4 along = vec4(f.x, kHalfSqrt2 * (f.x + f.y), f.y, kHalfSqrt2 * (f.y - f.x));
   if (any(greaterThan(along, splat_support_a)) || any(greaterThan(-along, splat_support_b))) discard;
   gl_FragDepth = r * depth_scale;
   gl_FragColor = splat_color;
@@ -74,7 +82,7 @@ void main() {
 }  // namespace
 
 ParticlePainter::ParticlePainter() {
-  program_ = std::make_unique<ShaderProgram>("the splat shader", kVertexShader, kFragmentShader,
+  program_ = std::make_unique<ShaderProgram>("the splat shader", kVertexShader.c_str(), kFragmentShader.c_str(),
                                              std::vector<std::pair<unsigned, const char*>>{{kPosition, "position"},
                                                                                            {kColor, "color"},
                                                                                            {kAxis, "axis"},
@@ -109,13 +117,14 @@ void ParticlePainter::paint(const std::vector<Vec2>& position, const std::vector
     largest = std::max(largest, v.shape.reach);
   }
   // The same size as the vertex shader computes, in single precision.
-  const float largest_px = std::max(largest * static_cast<float>(pixels_per_unit), 0.71f);
+  const float largest_px = std::max(largest * static_cast<float>(pixels_per_unit), kLeastSplatPixels);
   const float largest_size = std::ceil(2.0f * largest_px);
   if (largest_size > max_point_size_)
     throw UsageError("particles would be drawn " + std::to_string(static_cast<int>(largest_size)) +
                      " pixels wide, more than OpenGL's largest point (" +
                      std::to_string(static_cast<int>(max_point_size_)) + "): widen the view or lower the image size");
 
+  const GlStateGuard saved;  // restores what this changes, on every way out
   glUseProgram(program_->id());
   glUniform1f(pixels_per_unit_location_, static_cast<float>(pixels_per_unit));
   // Depth = distance / (a bit more than the largest reach): within [0, 1).
@@ -134,14 +143,12 @@ void ParticlePainter::paint(const std::vector<Vec2>& position, const std::vector
   // particle: particles just outside the panel must still paint its edge. The viewport
   // grows by the largest splat on every side, the projection with it (the same world per
   // pixel); the scissor box keeps the drawing inside the panel.
-  GLint viewport[4];
-  glGetIntegerv(GL_VIEWPORT, viewport);
+  const GLint* viewport = saved.viewport();
   const GLint grow = static_cast<GLint>(largest_size) + 1;
   glViewport(viewport[0] - grow, viewport[1] - grow, viewport[2] + 2 * grow, viewport[3] + 2 * grow);
   glMatrixMode(GL_PROJECTION);
   GLdouble projection[16];
   glGetDoublev(GL_PROJECTION_MATRIX, projection);
-  glPushMatrix();
   glLoadIdentity();
   glScaled(static_cast<double>(viewport[2]) / (viewport[2] + 2 * grow),
            static_cast<double>(viewport[3]) / (viewport[3] + 2 * grow), 1.0);
@@ -163,17 +170,6 @@ void ParticlePainter::paint(const std::vector<Vec2>& position, const std::vector
   for (unsigned a : {kPosition, kColor, kAxis, kSupportA, kSupportB, kReach}) glEnableVertexAttribArray(a);
   glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(n));
   for (unsigned a : {kPosition, kColor, kAxis, kSupportA, kSupportB, kReach}) glDisableVertexAttribArray(a);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-
-  glMatrixMode(GL_PROJECTION);
-  glPopMatrix();
-  glMatrixMode(GL_MODELVIEW);
-  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-
-  glDisable(GL_POINT_SPRITE);
-  glDisable(GL_PROGRAM_POINT_SIZE);
-  glDisable(GL_DEPTH_TEST);
-  glUseProgram(0);
 }
 
 }  // namespace bsmpm::render

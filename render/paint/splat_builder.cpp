@@ -9,7 +9,6 @@ namespace {
 
 constexpr float kSectorCos = 0.92387953f;  // cos 22.5 degrees: half of 45
 constexpr float kSectorSin = 0.38268343f;  // sin 22.5 degrees
-constexpr float kHalfSqrt2 = 0.70710678f;
 
 // max and min as single instructions (std::fmax would call the library for its NaN rules),
 // so that the loops over the 8 directions below run as vector instructions.

@@ -45,6 +45,10 @@
 
 namespace bsmpm::render {
 
+// cos 45 degrees: the turn from one support direction u_k to the next, in the splat builder
+// and in the painter's shader.
+inline constexpr float kHalfSqrt2 = 0.70710678f;
+
 // No pixel is painted farther than this many spacings (spacing = sqrt(particle volume))
 // from its particle: inside the stretched water of the elastic-gate runs (4 and 2 mm,
 // t = 0.25-0.4 s) nearly all empty circles between particles (Delaunay circumradii) are

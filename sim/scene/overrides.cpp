@@ -1,6 +1,7 @@
 #include "scene/overrides.hpp"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,7 +13,7 @@ namespace {
 
 struct Segment {
   std::string key;
-  long index = -1;  // array element, or -1
+  std::optional<long> index;  // the array element, for key[N]
 };
 
 std::vector<Segment> parse_path(std::string_view path, std::string_view assignment) {
@@ -27,6 +28,7 @@ std::vector<Segment> parse_path(std::string_view path, std::string_view assignme
       if (part.back() != ']') throw UsageError("--set " + std::string(assignment) + ": malformed index in '" + std::string(part) + "'");
       try {
         seg.index = std::stol(std::string(part.substr(bracket + 1, part.size() - bracket - 2)));
+        if (*seg.index < 0) throw std::out_of_range("negative");
       } catch (const std::exception&) {
         throw UsageError("--set " + std::string(assignment) + ": malformed index in '" + std::string(part) + "'");
       }
@@ -80,20 +82,21 @@ void apply_override(toml::table& root, std::string_view assignment) {
   for (std::size_t s = 0; s < path.size(); ++s) {
     const Segment& seg = path[s];
     const bool last = s + 1 == path.size();
-    if (seg.index >= 0) {
+    if (seg.index) {
+      const long index = *seg.index;
       toml::array* array = (*table)[seg.key].as_array();
       if (!array) throw UsageError("--set " + key + ": '" + seg.key + "' is not an array in the scene");
-      if (seg.index >= static_cast<long>(array->size()))
-        throw UsageError("--set " + key + ": index " + std::to_string(seg.index) + " is past the end of '" +
+      if (index >= static_cast<long>(array->size()))
+        throw UsageError("--set " + key + ": index " + std::to_string(index) + " is past the end of '" +
                          seg.key + "' (" + std::to_string(array->size()) + " entries)");
-      toml::node* element = array->get(static_cast<std::size_t>(seg.index));
+      toml::node* element = array->get(static_cast<std::size_t>(index));
       if (last) {
         toml::table holder;
-        array->replace(array->cbegin() + seg.index, std::move(parse_value(key, value, holder)));
+        array->replace(array->cbegin() + index, std::move(parse_value(key, value, holder)));
         return;
       }
       table = element->as_table();
-      if (!table) throw UsageError("--set " + key + ": '" + seg.key + "[" + std::to_string(seg.index) + "]' is not a table");
+      if (!table) throw UsageError("--set " + key + ": '" + seg.key + "[" + std::to_string(index) + "]' is not a table");
       continue;
     }
     if (last) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "bspline/clamped_bspline.hpp"
 #include "contact/contact_parameters.hpp"
@@ -105,7 +106,7 @@ RunCost predict_run_cost(const SceneDescription& scene) {
     }
   }
   const double h_min = std::min(h.x(), h.y());
-  c.stable_dt = c.signal_speed > 0.0 ? h_min / c.signal_speed : 1e300;
+  c.stable_dt = c.signal_speed > 0.0 ? h_min / c.signal_speed : std::numeric_limits<double>::infinity();  // no waves: no limit
   const TimeStepSettings& t = scene.time;
   if (t.mode == TimeStepSettings::Mode::kFixed) c.first_dt = t.dt;
   else c.first_dt = c.signal_speed > 0.0 ? std::min(t.max_dt, t.cfl * c.stable_dt) : t.max_dt;

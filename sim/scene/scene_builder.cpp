@@ -108,15 +108,15 @@ std::unique_ptr<Probe> make_probe(const SceneDescription& scene, const ProbeDesc
     case ProbeDescription::Kind::kWallReaction:
       return make_wall_reaction_probe(scene, d);
     case ProbeDescription::Kind::kSurfacePressure: {
-      MaterialPoint anchor(ps, bodies[d.body], d.point);
+      MaterialPoint anchor(ps, bodies[*d.body], d.point);
       return std::make_unique<PressureProbe>(d.name, d.interval, anchor, d.normal, sensor, fluids, scene.reference,
-                                             "face of " + bodies[d.body].name);
+                                             "face of " + bodies[*d.body].name);
     }
     case ProbeDescription::Kind::kFront:
-      return std::make_unique<FrontProbe>(d.name, d.interval, d.body, bodies[d.body].name, d.normal, scene.reference);
+      return std::make_unique<FrontProbe>(d.name, d.interval, *d.body, bodies[*d.body].name, d.normal, scene.reference);
     case ProbeDescription::Kind::kMaterialPoint:
-      return std::make_unique<MaterialPointProbe>(d.name, d.interval, MaterialPoint(ps, bodies[d.body], d.point),
-                                                  bodies[d.body].name);
+      return std::make_unique<MaterialPointProbe>(d.name, d.interval, MaterialPoint(ps, bodies[*d.body], d.point),
+                                                  bodies[*d.body].name);
   }
   return nullptr;
 }

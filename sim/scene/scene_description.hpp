@@ -37,7 +37,7 @@ struct ProbeDescription {
   Kind kind = Kind::kWallPressure;
   int wall = 0;                    // WallSide, for kWallPressure and kWallReaction
   double position = 0.0;           // along the wall [m]
-  int body = -1;                   // for kSurfacePressure, kMaterialPoint, kFront
+  std::optional<int> body;         // for kSurfacePressure, kMaterialPoint, kFront
   Vec2 point = Vec2::Zero();       // reference position on the body
   Vec2 normal = Vec2::Zero();      // into the fluid (kSurfacePressure); direction (kFront)
   double size = 0.008;             // sensor footprint [m]

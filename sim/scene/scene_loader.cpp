@@ -152,7 +152,7 @@ void read_probes(TableReader& root, SceneDescription& s, const SceneTables& scen
     } else if (type == "material_point") {
       p.kind = ProbeDescription::Kind::kMaterialPoint;
       p.body = body_index(t, "body", scene);
-      p.point = read_point_on_body(t, p.body, s);
+      p.point = read_point_on_body(t, *p.body, s);
     } else {
       p.size = t.number_or("size", 0.008, Range::positive());
       // A reaction sensor reads the wall itself: it has a face, no depth into the water.
@@ -170,7 +170,7 @@ void read_probes(TableReader& root, SceneDescription& s, const SceneTables& scen
       } else {
         p.kind = ProbeDescription::Kind::kSurfacePressure;
         p.body = body_index(t, "body", scene);
-        p.point = read_point_on_body(t, p.body, s);
+        p.point = read_point_on_body(t, *p.body, s);
         p.normal = t.vec2("normal");
         if (p.normal.norm() < 1e-12) t.fail("normal", "must be a non-zero vector");
       }

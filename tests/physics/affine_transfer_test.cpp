@@ -14,35 +14,6 @@ using namespace bsmpm;
 
 namespace {
 
-const char* kSpinningDisk = R"(
-[scene]
-title = "Spinning disk"
-[domain]
-min = [0.0, 0.0]
-max = [1.0, 1.0]
-[grid]
-cell_size = 0.025
-order = 2
-particles_per_cell = 2
-[time]
-end = 0.5
-cfl = 0.3
-max_dt = 0.002       # the CFL step is ~0.6 ms (c = 12 m/s)
-[gravity]
-g = 0.0
-[output]
-frame_interval = 0.1
-[materials.rubber]
-type = "elastic"
-density = 1000.0
-youngs_modulus = 1.0e5
-poisson_ratio = 0.3
-[[bodies]]
-name = "disk"
-material = "rubber"
-shape = { type = "disk", center = [0.5, 0.5], radius = 0.2 }
-)";
-
 constexpr double kOmega = 2.0;  // rad/s: rim speed 0.4 m/s, 4 % of the P-wave speed
 const Vec2 kCentre(0.5, 0.5);
 
@@ -60,7 +31,7 @@ double angular_momentum(const Particles& ps, double h, bool affine) {
 
 // Runs the disk spun up to kOmega for 0.5 s (about 800 steps) and returns L(end) / L(0).
 double spin_kept(const std::vector<std::string>& overrides, bool affine) {
-  const SceneDescription scene = load_scene_text(kSpinningDisk, "spinning_disk.toml", overrides);
+  const SceneDescription scene = load_scene(test::fixture_path("spinning_disk.toml"), overrides);
   auto sim = build_simulation(scene);
   // Rigid rotation, v = omega e_z x (x - c), and its affine field C = omega [[0, -1], [1, 0]].
   auto& ps = const_cast<Particles&>(sim->particles());

@@ -25,33 +25,6 @@ namespace {
 constexpr double kBounceRiseBound = 0.015;  // of M g h_fall
 constexpr double kColumnRiseBound = 1e-5;   // of M g a
 
-// An elastic block 0.1 x 0.1 m, its base 0.1 m above the floor of a 1 x 0.5 m tank, moving
-// at 0.5 m/s along the floor; it falls, bounces on the free-slip floor and slides on.
-std::string falling_block() {
-  return R"(
-[domain]
-min = [0.0, 0.0]
-max = [1.0, 0.5]
-[grid]
-cell_size = 0.01
-[time]
-end = 0.45
-cfl = 0.3
-[solver]
-mass_cutoff = 0.0
-[materials.rubber]
-type = "elastic"
-density = 1000.0
-youngs_modulus = 1.0e5
-poisson_ratio = 0.3
-[[bodies]]
-name = "block"
-material = "rubber"
-shape = { type = "rectangle", min = [0.2, 0.1], max = [0.3, 0.2] }
-velocity = [0.5, 0.0]
-)";
-}
-
 double total_mass(const Simulation& sim) {
   double m = 0.0;
   for (double mp : sim.particles().mass) m += mp;
@@ -81,7 +54,7 @@ double total_energy(const Simulation& sim, const Vec2& g) {
 
 TEST_CASE("A falling block gains M g t of momentum, keeps its momentum along the free-slip floor, and its energy",
           "[physics][bookkeeping]") {
-  const SceneDescription scene = load_scene_text(falling_block(), "falling_block.toml");
+  const SceneDescription scene = load_scene(test::fixture_path("falling_block.toml"));
   auto sim = build_simulation(scene);
   const Vec2 g = scene.effect_parameters<GravityParameters>()->vector();
   const double M = total_mass(*sim), fall = 0.1;

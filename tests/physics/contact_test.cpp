@@ -266,38 +266,7 @@ TEST_CASE("A block slides down a rigid incline at g (sin a - mu cos a) and stick
 TEST_CASE("A rigid body moving at a prescribed velocity pushes an elastic block ahead of it",
           "[physics][contact]") {
   // A rigid piston at 0.5 m/s, 30 mm behind an elastic block at rest; no gravity.
-  const std::string text = R"(
-[domain]
-min = [0.0, 0.0]
-max = [1.0, 0.4]
-[grid]
-cell_size = 0.01
-[time]
-end = 0.2
-cfl = 0.3
-[gravity]
-g = 0.0
-[materials.steel]
-type = "rigid"
-velocity = [0.5, 0.0]
-[materials.rubber]
-type = "elastic"
-density = 1000.0
-youngs_modulus = 1.0e5
-poisson_ratio = 0.3
-[[bodies]]
-name = "piston"
-material = "steel"
-shape = { type = "rectangle", min = [0.2, 0.1], max = [0.3, 0.3] }
-[[bodies]]
-name = "block"
-material = "rubber"
-shape = { type = "rectangle", min = [0.33, 0.15], max = [0.45, 0.25] }
-[[contacts]]
-bodies = ["piston", "block"]
-type = "frictionless"
-)";
-  const SceneDescription scene = load_scene_text(text, "piston.toml");
+  const SceneDescription scene = load_scene(test::fixture_path("piston_block.toml"));
   auto sim = build_simulation(scene);
   double deepest = 1e9;  // smallest gap between the piston's front face and the block
   test::step_through(*sim, scene, [&](const Simulation& s) {

@@ -3,6 +3,8 @@
 // still-water load against the cantilever's static deflection, at 4 and 2 mm (1 mm hidden).
 #include <catch2/catch.hpp>
 
+#include <array>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -25,6 +27,13 @@ namespace {
 // is 42.9 mm at 0.291 s, docs/validation.md). Mean |dx - mean of the published curves| over
 // 0.1-0.3 s: measured 0.73 mm (1.02 mm before the cut-off); bound 2 mm.
 constexpr double kCoarsePeak = 0.04475, kCoarsePeakBound = 0.0015;  // m
+// The mean P* the face sensors (P_h20, P_h40, P_h60) read over 0.1-0.3 s: measured 0.2145,
+// 0.1498, 0.0903 (the highest single samples, 12.5, 0.80 and 2.6, are impact spikes too
+// sensitive to hold); bound 10 % of each. Without the tension cut-off (min_pressure removed
+// from the scene) they read 0.169, 0.118 and 0.039: 21-57 % less.
+const std::array<const char*, 3> kFaceProbes = {"P_h20", "P_h40", "P_h60"};
+constexpr std::array<double, 3> kFaceLoads = {0.2145, 0.1498, 0.0903};
+constexpr double kFaceLoadBound = 0.10;
 constexpr double kCoarseCurveDeviationBound = 0.002;              // m
 // Still water, pure FLIP (pinned in the scene below; 5 % PIC damps the swing away): midway
 // between the first maximum and the following minimum of the tip, against the
@@ -177,16 +186,22 @@ TEST_CASE("Elastic gate at h = 4 mm: stable, no leak, and the tip against the pu
   CHECK(std::abs(peak.dx - kCoarsePeak) <= kCoarsePeakBound);
   CHECK(deviation <= kCoarseCurveDeviationBound);
 
-  // The face probes read no tension through the impact and the peak (issue 8's bound,
-  // -0.1 P*; measured 0 with the scene's cut-off; without it, at these steps, the lowest
-  // samples were -3.2, -2.1 and -2.4 P* at 20, 40 and 60 mm).
-  for (const char* name : {"P_h20", "P_h40", "P_h60"}) {
-    const Probe* probe = test::find_probe(*sim, name);
+  // The face probes read the water's load: the scene's tension cut-off (min_pressure = 0)
+  // keeps every sample >= 0 by construction, so what is checked is the load itself, the mean
+  // P* each face sensor reads from before the impact to after the peak (kFaceLoads).
+  for (std::size_t k = 0; k < kFaceProbes.size(); ++k) {
+    const Probe* probe = test::find_probe(*sim, kFaceProbes[k]);
     REQUIRE(probe != nullptr);
-    const auto lowest = test::lowest_after_contact(*probe, 0.05);
-    REQUIRE(lowest);  // the water reached it
-    INFO(name << ": lowest P* after contact " << *lowest);
-    CHECK(*lowest > -0.1);
+    double sum = 0.0;
+    int samples = 0;
+    for (std::size_t r = 0; r < probe->row_count(); ++r)
+      if (probe->row(r)[0] >= 0.1 && probe->row(r)[0] <= 0.3) {
+        sum += probe->row(r)[3];
+        ++samples;
+      }
+    REQUIRE(samples > 100);
+    INFO(kFaceProbes[k] << ": mean P* over 0.1-0.3 s " << sum / samples << ", measured " << kFaceLoads[k]);
+    CHECK(std::abs(sum / samples - kFaceLoads[k]) <= kFaceLoadBound * kFaceLoads[k]);
   }
 }
 
@@ -204,50 +219,7 @@ struct StillWaterSwing {
 };
 
 StillWaterSwing still_water_gate(double h) {
-  const std::string text = R"(
-[domain]
-min = [0.0, 0.0]
-max = [0.2, 0.12]
-[grid]
-cell_size = 0.002
-[time]
-end = 0.25
-dt = 1.0e-5
-[solver]
-smooth_fluid_volume = true
-flip = 1.0
-[materials.water]
-type = "fluid"
-density = 1000.0
-bulk_modulus = 1.0e6
-viscosity = 1.0e-3
-[materials.gate]
-type = "elastic"
-density = 2500.0
-youngs_modulus = 1.0e6
-poisson_ratio = 0.0
-[[bodies]]
-name = "water"
-material = "water"
-shape = { type = "rectangle", min = [0.0, 0.0], max = [0.05, 0.08] }
-initial_stress = "hydrostatic"
-[[bodies]]
-name = "gate"
-material = "gate"
-shape = { type = "rectangle", min = [0.05, 0.0], max = [0.062, 0.08] }
-[[bodies.clamp]]
-min = [0.05, 0.0]
-max = [0.062, 0.0]
-[[contacts]]
-bodies = ["water", "gate"]
-type = "frictionless"
-[[probes]]
-name = "tip"
-type = "material_point"
-body = "gate"
-point = [0.05, 0.08]
-)";
-  const SceneDescription scene = load_scene_text(text, "still_water_gate.toml", {"grid.cell_size=" + std::to_string(h)});
+  const SceneDescription scene = load_scene(test::fixture_path("still_water_gate.toml"), {"grid.cell_size=" + std::to_string(h)});
   auto sim = build_simulation(scene);
   test::step_through(*sim, scene, [](const Simulation&) {});
   const Probe* tip = test::find_probe(*sim, "tip");

@@ -2,6 +2,7 @@
 // hydrostatic pressure of the column and the water stays at rest.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -89,8 +90,8 @@ enum class Reaction { kChecked, kDamped };
 void check_hydrostatic(const test::SceneRun& run, const std::function<double(double)>& exact_at_height,
                        double pressure_bound, double speed_bound, Reaction reaction = Reaction::kChecked) {
   // Probes P_depthNNN (particles) and R_depthNNN (the wall's reaction, wall_reaction,
-  // method.md §8, eq. S2) sit on the left wall at depth NNN mm below the initial free
-  // surface; both read the same pressure, and the whole floor's reaction carries the weight
+  // method.md §8, eq. S2) sit on the left wall, at the height the scene gives them (below the
+  // initial free surface at kHeight); both read the same pressure, and the whole floor's reaction carries the weight
   // of all the water. The reaction measured on 2026-12-02 (equilibrium start): within 0.01 Pa
   // of the exact pressures and of the weight; the same bound as the particle probes. Not with
   // local damping, whose force at the wall's control points enters their reaction (method.md
@@ -100,8 +101,11 @@ void check_hydrostatic(const test::SceneRun& run, const std::function<double(dou
   for (const std::string& name : side_probes) {
     const Probe* probe = test::find_probe(*run.sim, name);
     REQUIRE(probe != nullptr);
-    const double depth = std::stoi(name.substr(7)) * 1e-3;
-    const double exact = exact_at_height(kHeight - depth);
+    const auto described = std::find_if(run.scene.probes.begin(), run.scene.probes.end(),
+                                        [&](const ProbeDescription& d) { return d.name == name; });
+    REQUIRE(described != run.scene.probes.end());
+    const double height = described->position, depth = kHeight - height;  // on the left wall: y
+    const double exact = exact_at_height(height);
     const double measured = mean_pressure(*probe, run.scene.time.end - 0.1);
     INFO(name << ": " << measured << " Pa against " << exact << " Pa (rho0 g depth = " << kRho * kG * depth
               << " Pa)");

@@ -32,40 +32,10 @@ constexpr double kProfileBound = 0.02;    // of U
 
 const double kH = 0.1, kL = 0.6, kU = 0.01, kMu = 10.0, kRho = 1000.0;  // nu = 0.01 m2/s
 
-std::string shear_tank() {
-  return R"(
-[domain]
-min = [0.0, 0.0]
-max = [0.6, 0.1]
-[grid]
-cell_size = 0.005
-order = 2
-particles_per_cell = 2
-[time]
-end = 0.1
-cfl = 0.3
-max_dt = 1.0e-3
-[gravity]
-g = 0.0
-[solver]
-flip = 1.0
-smooth_fluid_volume = false
-[materials.oil]
-type = "fluid"
-density = 1000.0
-bulk_modulus = 1.0e6
-viscosity = 10.0
-[[bodies]]
-name = "oil"
-material = "oil"
-shape = { type = "rectangle", min = [0.0, 0.0], max = [0.6, 0.1] }
-)";
-}
-
 }  // namespace
 
 TEST_CASE("A viscous shear flow decays as nu (pi/H)^2 with its cosine profile", "[physics][viscous]") {
-  const SceneDescription scene = load_scene_text(shear_tank(), "shear_tank.toml");
+  const SceneDescription scene = load_scene(test::fixture_path("shear_tank.toml"));
   auto sim = build_simulation(scene);
   auto* bsmpm = dynamic_cast<BsmpmSimulation<2>*>(sim.get());
   REQUIRE(bsmpm != nullptr);

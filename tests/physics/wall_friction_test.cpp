@@ -33,38 +33,10 @@ constexpr double kBound = 0.02;
 
 const double kDepth = 0.02, kU0 = 1.0, kSkinFriction = 0.02, kEnd = 0.3;
 
-std::string sliding_layer(double cell_size, double skin_friction) {
-  return format(R"(
-[domain]
-min = [0.0, 0.0]
-max = [1.4, 0.04]
-walls = { skin_friction = %g }
-[grid]
-cell_size = %g
-order = 2
-particles_per_cell = 2
-[time]
-end = %g
-cfl = 0.3
-max_dt = 1.0e-3
-[gravity]
-g = 0.0
-[materials.oil]
-type = "fluid"
-density = 1000.0
-bulk_modulus = 1.0e5
-viscosity = 40.0
-[[bodies]]
-name = "layer"
-material = "oil"
-shape = { type = "rectangle", min = [0.1, 0.0], max = [0.9, %g] }
-)",
-                skin_friction, cell_size, kEnd, kDepth);
-}
-
 // Mean velocity along the floor (total momentum over total mass) at the scene's end.
 double mean_velocity_at_end(double cell_size, double skin_friction) {
-  const SceneDescription scene = load_scene_text(sliding_layer(cell_size, skin_friction), "sliding_layer.toml");
+  const SceneDescription scene = load_scene(test::fixture_path("sliding_layer.toml"),
+                 {"grid.cell_size=" + shortest(cell_size), "domain.walls.skin_friction=" + shortest(skin_friction)});
   auto sim = build_simulation(scene);
   auto* bsmpm = dynamic_cast<BsmpmSimulation<2>*>(sim.get());
   REQUIRE(bsmpm != nullptr);

@@ -29,8 +29,8 @@
 #include <filesystem>
 
 #include "figure/figure_layout.hpp"
-#include "figure/figure_renderer.hpp"
-#include "figure/run_figures.hpp"
+#include "compose/figure_renderer.hpp"
+#include "compose/run_figures.hpp"
 #include "image/png_file.hpp"
 #include "regression/golden_images.hpp"
 #include "test_support.hpp"

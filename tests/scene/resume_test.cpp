@@ -18,6 +18,7 @@
 
 #include "io/hdf5.hpp"
 #include "io/particle_fields.hpp"
+#include "scene/signalled_run.hpp"
 #include "test_support.hpp"
 
 using namespace bsmpm;
@@ -31,36 +32,6 @@ const std::vector<std::string> kSceneArgs = {"--set", "grid.cell_size=0.01", "--
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-// Runs the program with `args`, and `environment` ("NAME=VALUE") added to its environment;
-// returns the wait status. `stop_when(dir)` true sends `signal`.
-template <class Stop>
-int run_program(const std::vector<std::string>& args, int signal, Stop stop_when, const fs::path& dir,
-                const std::string& environment = "") {
-  const pid_t pid = fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
-    if (!environment.empty() && putenv(const_cast<char*>(environment.c_str())) != 0) _exit(125);
-    std::vector<char*> argv{const_cast<char*>(BSMPM_EXECUTABLE)};
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(BSMPM_EXECUTABLE, argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (signal != 0 && std::chrono::steady_clock::now() < deadline) {
-    if (waitpid(pid, &status, WNOHANG) == pid) return status;  // ended before the signal
-    if (stop_when(dir)) {
-      kill(pid, signal);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  waitpid(pid, &status, 0);
-  return status;
 }
 
 // The Lobovsky tank with two sensors of the walls' reaction added (the water presses on the
@@ -131,7 +102,7 @@ void require_identical_runs(const fs::path& a, const fs::path& b) {
 fs::path uninterrupted() {
   static const fs::path dir = [] {
     const fs::path d = test::scratch_dir("resume_reference") / "run";
-    REQUIRE(WEXITSTATUS(run_program(run_args(d), 0, [](const fs::path&) { return false; }, d)) == 0);
+    REQUIRE(WEXITSTATUS(test::run_signalled(run_args(d))) == 0);
     return d;
   }();
   return dir;
@@ -146,8 +117,7 @@ int frames_listed(const fs::path& dir) {
 }
 
 int resume(const fs::path& dir) {
-  const int status =
-      run_program({"run", "--resume", dir.string(), "--quiet", "--threads", "1"}, 0, [](const fs::path&) { return false; }, dir);
+  const int status = test::run_signalled({"run", "--resume", dir.string(), "--quiet", "--threads", "1"});
   REQUIRE(WIFEXITED(status));
   return WEXITSTATUS(status);
 }
@@ -157,7 +127,8 @@ int resume(const fs::path& dir) {
 TEST_CASE("A run stopped by SIGINT or SIGTERM resumes bit for bit", "[cli][checkpoint]") {
   const int signal = GENERATE(SIGINT, SIGTERM);
   const fs::path dir = test::scratch_dir(signal == SIGINT ? "resume_sigint" : "resume_sigterm") / "run";
-  const int status = run_program(run_args(dir), signal, [](const fs::path& d) { return frames_listed(d) >= 4; }, dir);
+  // Signalled once 4 of the 13 frames are on disk: the 9 left take far longer than a poll.
+  const int status = test::run_signalled(run_args(dir), signal, [&] { return frames_listed(dir) >= 4; });
   REQUIRE(WIFEXITED(status));
   REQUIRE(WEXITSTATUS(status) == 128 + signal);  // 130 for SIGINT, 143 for SIGTERM
   REQUIRE(fs::exists(dir / "checkpoint.h5"));  // written when stopped
@@ -169,9 +140,9 @@ TEST_CASE("A run killed between checkpoints resumes from the last one bit for bi
   const fs::path dir = test::scratch_dir("resume_sigkill") / "run";
   // Killed some frames after the first checkpoint: frames, probe rows and CSV lines written
   // after it must go, and come back the same.
-  const int status = run_program(run_args(dir, {"--checkpoint-every", "0.03s"}), SIGKILL,
-                                 [](const fs::path& d) { return fs::exists(d / "checkpoint.h5") && frames_listed(d) >= 6; },
-                                 dir);
+  const int status = test::run_signalled(run_args(dir, {"--checkpoint-every", "0.03s"}), SIGKILL, [&] {
+    return fs::exists(dir / "checkpoint.h5") && frames_listed(dir) >= 6;
+  });
   REQUIRE(WIFSIGNALED(status));
   // As if the kill had come while the next checkpoint was being written: its temporary is
   // half there, and the last whole checkpoint is the one to resume from.
@@ -188,9 +159,9 @@ TEST_CASE("A run killed without any checkpoint option resumes from its periodic 
   // 10 minutes). Killed some frames after the first one; nothing on the command line asks
   // for a checkpoint.
   const fs::path dir = test::scratch_dir("resume_default") / "run";
-  const int status = run_program(run_args(dir), SIGKILL,
-                                 [](const fs::path& d) { return fs::exists(d / "checkpoint.h5") && frames_listed(d) >= 6; },
-                                 dir, "BSMPM_CHECKPOINT_EVERY=0.005min");
+  const int status = test::run_signalled(
+      run_args(dir), SIGKILL, [&] { return fs::exists(dir / "checkpoint.h5") && frames_listed(dir) >= 6; },
+      "BSMPM_CHECKPOINT_EVERY=0.005min");
   REQUIRE(WIFSIGNALED(status));
   CHECK(resume(dir) == 0);
   require_identical_runs(uninterrupted(), dir);

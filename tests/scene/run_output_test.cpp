@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "io/hdf5.hpp"
+#include "scene/signalled_run.hpp"
 #include "test_support.hpp"
 
 using namespace bsmpm;
@@ -127,29 +128,18 @@ TEST_CASE("bsmpm run refuses to overwrite a run without --force", "[cli][output]
 
 namespace {
 
-// Starts `bsmpm run` on the coarse Lobovsky tank with frequent frames, waits until at least
-// four frames are on disk, then sends `signal`; returns the wait status.
+// Starts `bsmpm run` on the coarse Lobovsky tank with frequent frames (525 of them to
+// t = 1.05 s), sends `signal` once four frames are on disk; returns the wait status.
 int run_and_signal(const fs::path& dir, int signal) {
   const std::string scene = test::scene_path("lobovsky_h300.toml");
-  const pid_t pid = fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    const std::string out = dir.string();
-    if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
-    execl(BSMPM_EXECUTABLE, BSMPM_EXECUTABLE, "run", scene.c_str(), "--out", out.c_str(), "--quiet", "--threads",
-          "1", "--set", "grid.cell_size=0.01", "--set", "output.frame_interval=0.002", nullptr);
-    _exit(127);
-  }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   std::string xdmf;
-  while (std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (fs::exists(dir / "run.xdmf")) xdmf = read_text(dir / "run.xdmf");
-    if (xdmf.find("frame 000003") != std::string::npos) break;
-  }
-  kill(pid, signal);
-  int status = 0;
-  waitpid(pid, &status, 0);
+  const int status = test::run_signalled(
+      {"run", scene, "--out", dir.string(), "--quiet", "--threads", "1", "--set", "grid.cell_size=0.01", "--set",
+       "output.frame_interval=0.002"},
+      signal, [&] {
+        if (fs::exists(dir / "run.xdmf")) xdmf = read_text(dir / "run.xdmf");
+        return xdmf.find("frame 000003") != std::string::npos;
+      });
   REQUIRE(xdmf.find("frame 000003") != std::string::npos);
   return status;
 }

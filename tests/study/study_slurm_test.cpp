@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <future>
+#include <string>
 #include <thread>
 
 #include "program_runner.hpp"
@@ -17,6 +18,11 @@ namespace fs = std::filesystem;
 
 TEST_CASE("a tiny study runs as Slurm jobs, visible to squeue while they run", "[study][slurm]") {
   REQUIRE(std::getenv("SLURM_CONF") != nullptr);  // run through scripts/slurm_cluster run
+  // The study's runs predict their wall time from the tests' calibration in the build
+  // directory, never from the user's own (tests/CMakeLists.txt).
+  const char* calibration = std::getenv("BSMPM_CALIBRATION");
+  REQUIRE(calibration != nullptr);
+  CHECK(std::string(calibration).rfind(BSMPM_BUILD_DIR, 0) == 0);
   const fs::path dir = test::scratch_dir("tiny_slurm");
   const fs::path out = dir / "out";
   const std::string study = std::string(BSMPM_EXECUTABLE) + " study " + test::source_path("tests/study/tiny_study.toml") +

@@ -130,59 +130,6 @@ TEST_CASE("bsmpm run: water against the clamped elastic gate is bit-identical on
 
 TEST_CASE("bsmpm run: a rigid piston pushing water onto a clamped plate is bit-identical on 1 and 2 threads",
           "[determinism][cli][contact]") {
-  const auto scene = test::scratch_dir("piston_scene") / "piston.toml";
-  std::ofstream(scene) << R"(
-[domain]
-min = [0.0, 0.0]
-max = [0.6, 0.3]
-[grid]
-cell_size = 0.005
-[time]
-end = 0.04
-cfl = 0.3
-[output]
-frame_interval = 0.02
-[solver]
-smooth_fluid_volume = true
-[materials.water]
-type = "fluid"
-density = 1000.0
-bulk_modulus = 1.0e6
-viscosity = 1.0e-3
-[materials.steel]
-type = "rigid"
-velocity = [0.5, 0.0]
-[materials.plate]
-type = "elastic"
-density = 2500.0
-youngs_modulus = 1.0e6
-[[bodies]]
-name = "piston"
-material = "steel"
-shape = { type = "rectangle", min = [0.02, 0.0], max = [0.05, 0.15] }
-[[bodies]]
-name = "water"
-material = "water"
-shape = { type = "rectangle", min = [0.05, 0.0], max = [0.2, 0.1] }
-initial_stress = "hydrostatic"
-[[bodies]]
-name = "plate"
-material = "plate"
-shape = { type = "rectangle", min = [0.205, 0.0], max = [0.217, 0.08] }
-[[bodies.clamp]]
-min = [0.205, 0.0]
-max = [0.217, 0.0]
-[[contacts]]
-bodies = ["piston", "water"]
-type = "frictionless"
-[[contacts]]
-bodies = ["water", "plate"]
-type = "frictionless"
-[[probes]]
-name = "tip"
-type = "material_point"
-body = "plate"
-point = [0.205, 0.08]
-)";
+  const std::string scene = test::fixture_path("piston_water_plate.toml");
   check_bit_identical("piston", scene, "");
 }

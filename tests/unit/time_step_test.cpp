@@ -24,46 +24,10 @@ TEST_CASE("time_step: the CFL rule, its cap and a fixed step", "[time_step]") {
 
 namespace {
 
-// A block of water (Tait, K = 1 MPa) at rest under hydrostatic stress and an elastic block
-// moving at 2 m/s, in a 1 x 0.5 m tank with h = 10 mm, in one field (no contact).
-std::string two_blocks(const std::string& time_table) {
-  return R"(
-[domain]
-min = [0.0, 0.0]
-max = [1.0, 0.5]
-[grid]
-cell_size = 0.01
-[time]
-end = 0.01
-)" + time_table + R"(
-[output]
-frame_interval = 0.004
-[materials.water]
-type = "fluid"
-density = 1000.0
-bulk_modulus = 1.0e6
-[materials.rubber]
-type = "elastic"
-density = 1200.0
-youngs_modulus = 4.0e6
-poisson_ratio = 0.3
-[[bodies]]
-name = "water"
-material = "water"
-shape = { type = "rectangle", min = [0.0, 0.0], max = [0.3, 0.2] }
-initial_stress = "hydrostatic"
-[[bodies]]
-name = "block"
-material = "rubber"
-shape = { type = "rectangle", min = [0.6, 0.1], max = [0.7, 0.2] }
-velocity = [2.0, 0.0]
-)";
-}
-
 }  // namespace
 
 TEST_CASE("The CFL signal speed is the largest wave speed plus particle speed", "[time_step]") {
-  const SceneDescription scene = load_scene_text(two_blocks("cfl = 0.3\nmax_dt = 1.0e-3"), "two_blocks.toml");
+  const SceneDescription scene = load_scene(test::fixture_path("two_blocks.toml"), {"time.cfl=0.3", "time.max_dt=1.0e-3"});
   const auto sim = build_simulation(scene);
   // Water: c = sqrt(K / rho0 (rho / rho0)^6) at the deepest particle, whose pressure is
   // rho0 g depth (depth 0.2 m less half a spacing). Rubber: the P-wave speed
@@ -77,26 +41,26 @@ TEST_CASE("The CFL signal speed is the largest wave speed plus particle speed", 
   CHECK(time_step(scene.time, sim->max_signal_speed(), 0.01) == Approx(0.3 * 0.01 / (c_rubber + 2.0)).epsilon(1e-12));
   // Without the block, the water's sound speed at its deepest particle bounds the step.
   const SceneDescription water_only =
-      load_scene_text(two_blocks("cfl = 0.3\nmax_dt = 1.0e-3"), "two_blocks.toml", {"bodies[1].material=water",
-                                                                                      "bodies[1].velocity=[0.0, 0.0]"});
+      load_scene(test::fixture_path("two_blocks.toml"),
+                 {"time.cfl=0.3", "time.max_dt=1.0e-3", "bodies[1].material=water", "bodies[1].velocity=[0.0, 0.0]"});
   const auto sim_water = build_simulation(water_only);
   CHECK(sim_water->max_signal_speed() == Approx(c_water).epsilon(1e-9));
 }
 
 TEST_CASE("A run takes CFL steps, capped ones, or the fixed step, and lands on the frame times", "[time_step]") {
   struct Case {
-    std::string time_table;
+    std::vector<std::string> time_step;  // overrides of [time]
     double expected_dt;  // of every step that does not land on a frame time
   };
   const double cfl_dt = 0.3 * 0.01 / (std::sqrt(4e6 * 0.7 / (1.3 * 0.4) / 1200.0) + 2.0);  // 4.34e-5 s at the start
   const std::vector<Case> cases = {
-      {"cfl = 0.3\nmax_dt = 1.0e-3", cfl_dt},  // CFL (the block's speed changes little in 10 ms)
-      {"cfl = 0.3\nmax_dt = 2.0e-5", 2e-5},    // capped
-      {"dt = 3.0e-5", 3e-5},                   // fixed
+      {{"time.cfl=0.3", "time.max_dt=1.0e-3"}, cfl_dt},  // CFL (the block's speed changes little in 10 ms)
+      {{"time.cfl=0.3", "time.max_dt=2.0e-5"}, 2e-5},    // capped
+      {{"time.dt=3.0e-5"}, 3e-5},                        // fixed
   };
   for (const Case& c : cases) {
-    INFO(c.time_table);
-    const SceneDescription scene = load_scene_text(two_blocks(c.time_table), "two_blocks.toml");
+    INFO(c.time_step[0]);
+    const SceneDescription scene = load_scene(test::fixture_path("two_blocks.toml"), c.time_step);
     auto sim = build_simulation(scene);
     std::vector<double> frame_times;
     RunHooks hooks;
@@ -115,7 +79,7 @@ TEST_CASE("A run takes CFL steps, capped ones, or the fixed step, and lands on t
     CHECK(out.steps >= static_cast<long>(0.01 / (c.expected_dt * 1.01)));
   }
   // A fixed step is exactly that step.
-  const SceneDescription fixed = load_scene_text(two_blocks("dt = 3.0e-5"), "two_blocks.toml");
+  const SceneDescription fixed = load_scene(test::fixture_path("two_blocks.toml"), {"time.dt=3.0e-5"});
   auto sim = build_simulation(fixed);
   const RunOutcome out = run_to_end(*sim, fixed.time, fixed.frame_interval, RunHooks{});
   CHECK(out.min_dt == 3e-5);

@@ -3,7 +3,7 @@
 // image has the size asked for.
 #include <catch2/catch.hpp>
 
-#include "figure/figure_renderer.hpp"
+#include "compose/figure_renderer.hpp"
 #include "paint/color_bar_painter.hpp"
 #include "test_support.hpp"
 #include "unit/render/figure_pixels.hpp"

@@ -10,7 +10,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
-#include "figure/run_figures.hpp"
+#include "compose/run_figures.hpp"
 #include "settings/render_options.hpp"
 #include "test_support.hpp"
 #include "unit/render/synthetic_run.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <functional>
 
-#include "figure/figure_renderer.hpp"
+#include "compose/figure_renderer.hpp"
 #include "unit/render/figure_pixels.hpp"
 
 using namespace bsmpm;

@@ -1,4 +1,4 @@
-#include "figure/figure_renderer.hpp"
+#include "compose/figure_renderer.hpp"
 
 #include <GL/gl.h>
 

@@ -1,4 +1,4 @@
-#include "figure/run_figures.hpp"
+#include "compose/run_figures.hpp"
 
 #include <algorithm>
 #include <cmath>
