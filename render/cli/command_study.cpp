@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -72,6 +73,12 @@ std::string python() { return fs::exists("/usr/bin/python3") ? "/usr/bin/python3
 
 std::string version_line() { return std::string("bsmpm ") + kVersion + " (" + kGitRevision + ")"; }
 
+// Set when Ctrl-C or SIGTERM reached this process while Snakemake ran: the study was
+// interrupted, whatever state its cases were caught in (a case whose run had not started
+// yet leaves no trace of it).
+std::atomic<bool> g_study_interrupted{false};
+extern "C" void note_study_interruption(int) { g_study_interrupted.store(true); }
+
 // Runs argv in `dir` with stdout and stderr appended to `log`, calling `tick` about twice a
 // second until it ends; returns its exit status (127: could not be started).
 int run_child(const std::vector<std::string>& argv, const fs::path& dir, const fs::path& log,
@@ -91,11 +98,11 @@ int run_child(const std::vector<std::string>& argv, const fs::path& dir, const f
     _exit(127);
   }
   // Ctrl-C reaches the whole process group: Snakemake stops its jobs (and cancels its Slurm
-  // jobs); this process waits for it to finish doing so and then reports.
-  struct sigaction ignore {}, old_int {}, old_term {};
-  ignore.sa_handler = SIG_IGN;
-  sigaction(SIGINT, &ignore, &old_int);
-  sigaction(SIGTERM, &ignore, &old_term);
+  // jobs); this process notes it, waits for Snakemake to finish doing so and then reports.
+  struct sigaction note {}, old_int {}, old_term {};
+  note.sa_handler = note_study_interruption;
+  sigaction(SIGINT, &note, &old_int);
+  sigaction(SIGTERM, &note, &old_term);
   int status = 0;
   while (true) {
     const pid_t r = waitpid(pid, &status, WNOHANG);
@@ -224,7 +231,7 @@ int command_study(const std::vector<std::string>& argv) {
   report(true);
 
   const StudyStatus after = progress.poll();
-  if (after.interrupted > 0) {
+  if (after.interrupted > 0 || g_study_interrupted.load()) {
     std::fprintf(stderr, "bsmpm: the study was interrupted (%d cases stopped, %d done); the same command resumes it\n",
                  after.interrupted, after.done);
     return kInterrupted;

@@ -49,5 +49,6 @@ TEST_CASE("A bad override names itself", "[scene][override]") {
   CHECK_THROWS_AS(h300({"grid.cellsize=0.01"}), SceneError);  // unknown key
   CHECK_THROWS_AS(h300({"grid.cell_size"}), UsageError);      // no '='
   CHECK_THROWS_AS(h300({"bodies[3].velocity=[0,0]"}), UsageError);
+  CHECK_THROWS_AS(h300({"bodies[-1].velocity=[0,0]"}), UsageError);  // no element before the first
   CHECK_THROWS_AS(h300({"grid.order.x=1"}), UsageError);      // not a table
 }

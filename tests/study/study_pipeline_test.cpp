@@ -4,8 +4,14 @@
 // while the other completes, and a bad study that runs nothing.
 #include <catch2/catch.hpp>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <filesystem>
 #include <map>
+#include <thread>
 
 #include "program_runner.hpp"
 #include "test_support.hpp"
@@ -64,10 +70,17 @@ TEST_CASE("a tiny study runs through Snakemake, resumes, and reruns only what is
   const auto first = run_stamps(out);
   REQUIRE(first.size() == 4);
 
-  // Again: every case is found, none runs.
+  // Again: every case is found, none runs. Its progress (the "study" lines on stderr, the
+  // last one always written) is there, and gone with --quiet, which keeps the result lines.
   REQUIRE(test::run_command(study_command("tiny_study.toml", out), out.string() + ".2.log") == 0);
-  CHECK(test::read_text(out.string() + ".2.log").find("4 reused, 0 computed now") != std::string::npos);
+  const std::string again = test::read_text(out.string() + ".2.log");
+  CHECK(again.find("4 reused, 0 computed now") != std::string::npos);
+  CHECK(again.find("4/4 done") != std::string::npos);
   CHECK(run_stamps(out) == first);
+  REQUIRE(test::run_command(study_command("tiny_study.toml", out, "--quiet"), out.string() + ".2q.log") == 0);
+  const std::string quiet = test::read_text(out.string() + ".2q.log");
+  CHECK(quiet.find("4 reused, 0 computed now") != std::string::npos);
+  CHECK(quiet.find("/4 done") == std::string::npos);
 
   // One case's result deleted: that case alone runs again.
   const std::string gone = first.begin()->first;
@@ -154,4 +167,47 @@ TEST_CASE("a bad study file is an error naming file:line:column, and nothing run
   const std::string text = test::read_text(dir / "log");
   CHECK(text.find(study.string() + ":7:11: gravity.gg: unknown key") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("Ctrl-C stops a study with exit status 130, and the same command resumes it", "[study][pipeline]") {
+  // As a terminal does: SIGINT to the whole process group (bsmpm, Snakemake and the runs),
+  // once the first case has started (the group is stopped while the signal goes out, so
+  // that no case finishes in between).
+  const fs::path out = test::scratch_dir("tiny_interrupted") / "out";
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    setpgid(0, 0);
+    if (!freopen((out.string() + ".1.log").c_str(), "w", stdout) || !freopen("/dev/null", "w", stderr)) _exit(126);
+    const std::string study = test::source_path("tests/study/tiny_study.toml"), dir = out.string();
+    execl(BSMPM_EXECUTABLE, BSMPM_EXECUTABLE, "study", study.c_str(), "--dir", dir.c_str(), "--cores", "2", nullptr);
+    _exit(127);
+  }
+  setpgid(pid, pid);  // whichever of the two runs first
+  auto started = [&] {
+    std::error_code ec;
+    if (!fs::exists(out / "cases", ec)) return false;
+    for (const auto& d : fs::directory_iterator(out / "cases", ec))
+      if (fs::exists(d.path() / "started")) return true;
+    return false;
+  };
+  int status = 0;
+  bool signalled = false;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (started()) {
+      kill(-pid, SIGSTOP);
+      kill(-pid, SIGINT);
+      kill(-pid, SIGCONT);
+      signalled = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (signalled) waitpid(pid, &status, 0);
+  REQUIRE(signalled);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  // The same command resumes: every case done, the CSV written.
+  REQUIRE(test::run_command(study_command("tiny_study.toml", out), out.string() + ".2.log") == 0);
+  CHECK(test::read_csv(out / "tiny.csv").rows.size() == 4);
 }
