@@ -178,11 +178,11 @@ TEST_CASE("An incompressible run killed between checkpoints resumes bit for bit"
     return a;
   };
   const fs::path reference = test::scratch_dir("resume_incompressible_reference") / "run";
-  REQUIRE(WEXITSTATUS(run_program(args(reference, {}), 0, [](const fs::path&) { return false; }, reference)) == 0);
+  REQUIRE(WEXITSTATUS(test::run_signalled(args(reference, {}))) == 0);
   const fs::path dir = test::scratch_dir("resume_incompressible") / "run";
-  const int status = run_program(args(dir, {"--checkpoint-every", "0.03s"}), SIGKILL,
-                                 [](const fs::path& d) { return fs::exists(d / "checkpoint.h5") && frames_listed(d) >= 5; },
-                                 dir);
+  const int status = test::run_signalled(args(dir, {"--checkpoint-every", "0.03s"}), SIGKILL, [&] {
+    return fs::exists(dir / "checkpoint.h5") && frames_listed(dir) >= 5;
+  });
   REQUIRE(WIFSIGNALED(status));
   CHECK(resume(dir) == 0);
   h5::Handle fa = h5::open_file((reference / "run.h5").string()), fb = h5::open_file((dir / "run.h5").string());
