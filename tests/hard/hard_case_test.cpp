@@ -105,15 +105,16 @@ TEST_CASE("Hard case: spray at spline order 1 gains energy and enters the block 
 }
 
 // No drift, no creep: the water starts in hydrostatic equilibrium and must stay in it for
-// 10 s. Bounds: speed < 0.01 m/s, displacement < 0.01 cells, |energy change| < 1e-3 of the
-// scale. Measured without the volume smoothing, orders 1 / 2: speed 0.0002 / 0.0012 m/s,
-// displacement 2.2e-6 / 5.1e-6 m (5e-5 / 1e-4 cells), energy change < 1e-4.
+// 10 s. Measured without the volume smoothing, orders 1 / 2 (hard_case_measure): speed 0.0002
+// / 0.00119 m/s, displacement 2.23e-6 / 5.17e-6 m (4.5e-5 / 1.03e-4 cells), energy change
+// < 1e-4 of the scale. Bounds, about ten times the worst order's: speed < 0.01 m/s,
+// displacement < 1e-3 cells, |energy change| < 1e-3 of the scale.
 namespace {
 void require_still(const HardCaseReport& r) {
   INFO(test::describe(r));
   require_stable(r);
   CHECK(r.max_speed < 0.01);
-  CHECK(r.max_displacement < 0.01 * r.cell);
+  CHECK(r.max_displacement < 1e-3 * r.cell);
   CHECK(std::abs(r.final_energy_change) < 1e-3);
 }
 }  // namespace
