@@ -1,10 +1,10 @@
 // The constitutive models a scene can name, registered as the effects are
-// (scene/effect_registry.cpp). Code visits the variant once per body and then runs a loop
+// (scene/effect_registry.hpp). Code visits the variant once per body and then runs a loop
 // typed on the concrete model; nothing is dispatched per particle.
 //
 // A new material is one header with a value type that satisfies MaterialModel below, plus its
 // line in RegisteredMaterials; the step then needs its deformation and stress update
-// (BsmpmSimulation::update_body), which the compiler asks for.
+// (StressUpdate::update_body, step/passes/stress_update.hpp), which the compiler asks for.
 #pragma once
 
 #include <concepts>
