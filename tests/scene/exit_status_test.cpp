@@ -164,6 +164,21 @@ TEST_CASE("Exit 3: numerical instability, the frames kept", "[cli][exit]") {
   CHECK(read_run_summary(dir.string()).exit_status == 3);
 }
 
+TEST_CASE("Exit 3: an incompressible fluid's pressure solve that does not converge, the frames kept",
+          "[cli][exit][incompressible]") {
+  // Two iterations cannot bring the first solve (about 50 from the particles' pressure) to
+  // the tolerance: the run stops at its first step, saying which solve and why.
+  const fs::path dir = scratch() / "unconverged";
+  const auto r = program("run " + test::scene_path("hydrostatic_tank_incompressible.toml") + " --out " +
+                         dir.string() + " --quiet --threads 1 --set time.end=0.01 --set solver.pressure.max_iterations=2");
+  INFO(r.output);
+  CHECK(r.status == 3);
+  CHECK(contains(r.output, "the pressure solve of the incompressible fluid did not converge"));
+  CHECK(contains(r.output, "after 2 conjugate-gradient iterations"));
+  CHECK(read_run_summary(dir.string()).exit_status == 3);
+  CHECK(fs::exists(dir / "run.h5"));  // the frames so far and the failing state
+}
+
 TEST_CASE("Exit 4: out of space, every file whole", "[cli][exit]") {
   const fs::path dir = scratch() / "full";
   const auto r = program("run " + kLobovsky + " --out " + dir.string() +

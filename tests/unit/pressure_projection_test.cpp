@@ -53,7 +53,7 @@ DivergenceOperator<2> divergence(StepState<2>& st) {
   D.resize(grid, st.grid.nx(), st.grid.ny());
   st.schedules[0].for_each([&](std::uint32_t p) {
     const auto& w = st.weights[p];
-    D.add_particle(w, grid.at(st.particles.x[p], w.i0, w.j0), st.particles.volume(p), 0.0, 0.0);
+    D.add_particle(w, grid.at(st.particles.x[p], w.i0, w.j0), st.particles.volume(p), st.particles.volume0[p], 0.0, 0.0);
   });
   return D;
 }
@@ -209,3 +209,4 @@ TEST_CASE("Projected, water falling on the floor stops and the floor takes its m
   CHECK(push > 0.1 * momentum);               // the water presses on the side walls ...
   CHECK(std::abs(sides) <= 1e-12 * momentum);  // ... equally
 }
+

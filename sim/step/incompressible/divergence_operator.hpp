@@ -30,6 +30,7 @@ class DivergenceOperator {
 
   struct Moments {
     double volume = 0.0;    // sum_p V_p Q_K
+    double volume0 = 0.0;   // sum_p V0_p Q_K: how much water the hat holds, whatever its J
     double excess = 0.0;    // sum_p V0_p (J_p - 1) Q_K
     double pressure = 0.0;  // sum_p V_p p_p Q_K
   };
@@ -57,7 +58,7 @@ class DivergenceOperator {
 
   // One particle's share (eq. I2). The caller scatters in a strip order: a particle writes
   // the vertex columns of its cell's corners, within the columns its control points span.
-  void add_particle(const ParticleWeights<P>& w, const PressureGrid::Hats& q, double V, double excess,
+  void add_particle(const ParticleWeights<P>& w, const PressureGrid::Hats& q, double V, double V0, double excess,
                     double pressure) {
     const int ny = grid_.ny();
     for (int ha = 0; ha < 2; ++ha)
@@ -66,6 +67,7 @@ class DivergenceOperator {
         const double s = q.qx[ha] * q.qy[hb];
         Moments& m = moments_[K];
         m.volume += s * V;
+        m.volume0 += s * V0;
         m.excess += s * excess;
         m.pressure += s * V * pressure;
         Vec2* const row = entries_.data() + std::size_t(K) * kEntries;

@@ -125,7 +125,7 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
       st.schedules[b].for_each([&](std::uint32_t p) {
         const auto& w = st.weights[p];
         const PressureGrid::Hats q = grid_.at(ps.x[p], w.i0, w.j0);
-        D_.add_particle(w, q, ps.volume(p), ps.volume0[p] * (ps.J[p] - 1.0), ps.pressure[p]);
+        D_.add_particle(w, q, ps.volume(p), ps.volume0[p], ps.volume0[p] * (ps.J[p] - 1.0), ps.pressure[p]);
       });
     }
     system_.find_unknowns(D_, vertices, nodes, parameters_.surface_fraction,
@@ -157,14 +157,19 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
     std::fill(pressure_.begin(), pressure_.end(), 0.0);
     if (n > 0) {
       const PressureMatrix<P> A(&system_);
-      Eigen::ConjugateGradient<PressureMatrix<P>, Eigen::Lower | Eigen::Upper, JacobiPreconditioner<P>> cg;
-      cg.setTolerance(parameters_.tolerance);
-      cg.setMaxIterations(parameters_.max_iterations);
-      cg.compute(A);
-      const Eigen::VectorXd p = cg.solveWithGuess(rhs, guess);
-      solve.iterations = static_cast<int>(cg.iterations());
-      solve.residual = cg.error();
-      if (cg.info() != Eigen::Success || !p.allFinite())
+      Eigen::VectorXd p;
+      bool converged = false;
+      auto run = [&](auto& cg) {
+        cg.setTolerance(parameters_.tolerance);
+        cg.setMaxIterations(parameters_.max_iterations);
+        cg.compute(A);
+        p = cg.solveWithGuess(rhs, guess);
+        solve.iterations = static_cast<int>(cg.iterations());
+        solve.residual = cg.error();
+        converged = cg.info() == Eigen::Success;
+      };
+      run(cg_);
+      if (!converged || !p.allFinite())
         throw NumericalError(format(
             "numerical instability at step %ld (t = %.6g s): the pressure solve of the incompressible fluid did not "
             "converge: relative residual %.3g after %d conjugate-gradient iterations, above solver.pressure.tolerance "
@@ -258,6 +263,7 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
 
   Parameters parameters_;
   std::vector<Field> fields_;
+  Eigen::ConjugateGradient<PressureMatrix<P>, Eigen::Lower | Eigen::Upper, JacobiPreconditioner<P>> cg_;
   PressureGrid grid_;
   DivergenceOperator<P> D_;
   PressureSystem<P> system_;

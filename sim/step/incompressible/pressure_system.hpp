@@ -63,7 +63,9 @@ class PressureSystem {
     for (int a = vertices.i0; a < vertices.i1; ++a)
       for (int b = vertices.j0; b < vertices.j1; ++b) {
         const int K = a * ny + b;
-        if (D.moments(K).volume >= fraction * grid_.hat_integral(a, b)) {
+        // The water's reference volume: compressed water fills its hat as uncompressed water
+        // would, so a compressing cluster is held, not let go as spray.
+        if (D.moments(K).volume0 >= fraction * grid_.hat_integral(a, b)) {
           position_[K] = static_cast<int>(unknowns_.size());
           unknowns_.push_back(K);
         }
@@ -90,6 +92,7 @@ class PressureSystem {
   }
 
   int size() const { return static_cast<int>(unknowns_.size()); }
+  const PressureGrid& grid() const { return grid_; }
   const std::vector<int>& unknowns() const { return unknowns_; }
   const std::vector<double>& diagonal() const { return diagonal_; }
   const Vec2& inverse_mass(int node) const { return inverse_mass_[node]; }
