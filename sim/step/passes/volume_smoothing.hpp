@@ -41,27 +41,31 @@ class VolumeSmoothing {
     const Vec2& x = st.particles.x[p];
     const auto& w = st.weights[p];
     const double m = st.particles.mass[p], mJ = m * st.particles.J[p];
-    std::array<double, P + 1> y0, y1, y2;  // N_c {1, dy, dy^2}
+    // The nine products in lane pairs (the same products and sums as one by one, so the
+    // same bits): mom[0..1] = (x0, x1) y0, mom[2..3] = (x0 y1, x2 y0), mom[4..5] =
+    // (x1 y1, x0 y2), mom[6..7] = (j0, j1) y0, mom[8] = j0 y1.
+    std::array<Eigen::Array2d, P + 1> y00, y10, y12;  // N_c {1, dy, dy^2} paired
+    std::array<double, P + 1> y1;
     for (int c = 0; c <= P; ++c) {
       const double dy = (x.y() - gy[w.j0 + c]) * inverse_cell_.y();
-      y0[c] = w.wy[c];
-      y1[c] = w.wy[c] * dy;
-      y2[c] = y1[c] * dy;
+      const double y0 = w.wy[c];
+      y1[c] = y0 * dy;
+      const double y2 = y1[c] * dy;
+      y00[c] = Eigen::Array2d(y0, y0);
+      y10[c] = Eigen::Array2d(y1[c], y0);
+      y12[c] = Eigen::Array2d(y1[c], y2);
     }
     for (int a = 0; a <= P; ++a) {
       const double dx = (x.x() - gx[w.i0 + a]) * inverse_cell_.x();
       const double x0 = m * w.wx[a], x1 = x0 * dx, x2 = x1 * dx;
       const double j0 = mJ * w.wx[a], j1 = j0 * dx;
+      const Eigen::Array2d x01(x0, x1), x02(x0, x2), x10(x1, x0), j01(j0, j1);
       double* mom = moments + kMoments * ((w.i0 + a) * ny + w.j0);
       for (int c = 0; c <= P; ++c, mom += kMoments) {
-        mom[0] += x0 * y0[c];
-        mom[1] += x1 * y0[c];
-        mom[2] += x0 * y1[c];
-        mom[3] += x2 * y0[c];
-        mom[4] += x1 * y1[c];
-        mom[5] += x0 * y2[c];
-        mom[6] += j0 * y0[c];
-        mom[7] += j1 * y0[c];
+        Eigen::Map<Eigen::Array2d>(mom + 0) += x01 * y00[c];
+        Eigen::Map<Eigen::Array2d>(mom + 2) += x02 * y10[c];
+        Eigen::Map<Eigen::Array2d>(mom + 4) += x10 * y12[c];
+        Eigen::Map<Eigen::Array2d>(mom + 6) += j01 * y00[c];
         mom[8] += j0 * y1[c];
       }
     }
