@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 #include "core/types.hpp"
@@ -26,6 +27,18 @@ struct Particles {
 
   std::size_t size() const { return x.size(); }
 
+  // Calls visit(array) for every per-particle array above: the one list that bytes() and
+  // permute() walk, so that a new array cannot be left out of either.
+  template <class Visit>
+  void for_each_array(Visit&& visit) {
+    visit(x), visit(x0), visit(v), visit(mass), visit(volume0), visit(J), visit(F), visit(stress), visit(pressure),
+        visit(C), visit(id), visit(body);
+  }
+  template <class Visit>
+  void for_each_array(Visit&& visit) const {
+    const_cast<Particles&>(*this).for_each_array([&](const auto& a) { visit(a); });
+  }
+
   void push_back(const Vec2& position, double m, double volume, BodyId b) {
     x.push_back(position);
     x0.push_back(position);
@@ -43,20 +56,21 @@ struct Particles {
 
   double volume(std::size_t p) const { return volume0[p] * J[p]; }
   std::size_t bytes() const {
-    return heap_bytes(x) + heap_bytes(x0) + heap_bytes(v) + heap_bytes(mass) + heap_bytes(volume0) + heap_bytes(J) +
-           heap_bytes(F) + heap_bytes(stress) + heap_bytes(pressure) + heap_bytes(C) + heap_bytes(id) +
-           heap_bytes(body);
+    std::size_t sum = 0;
+    for_each_array([&](const auto& a) { sum += heap_bytes(a); });
+    return sum;
   }
 
-  // Buffers for permute(), kept by the caller so that re-sorting allocates nothing.
+  // Buffers for permute(), one per element type, kept by the caller so that re-sorting
+  // allocates nothing.
   struct PermuteScratch {
-    std::vector<Vec2> vec2;
-    std::vector<double> real;
-    std::vector<Mat2> mat2;
-    std::vector<std::uint32_t> index;
-    std::vector<BodyId> body;
+    std::tuple<std::vector<Vec2>, std::vector<double>, std::vector<Mat2>, std::vector<std::uint32_t>,
+               std::vector<BodyId>>
+        buffers;
+    template <class T>
+    std::vector<T>& of() { return std::get<std::vector<T>>(buffers); }
     std::size_t bytes() const {
-      return heap_bytes(vec2) + heap_bytes(real) + heap_bytes(mat2) + heap_bytes(index) + heap_bytes(body);
+      return std::apply([](const auto&... b) { return (heap_bytes(b) + ...); }, buffers);
     }
   };
   // Reorders the range [begin, begin + order.size()) so that new slot k holds old

@@ -102,20 +102,27 @@ class DivergenceOperator {
     return t;
   }
 
-  // (D t)_K = sum_I D_KI . t_I over the control points vertex K couples to.
-  double row_times(int K, const std::vector<Vec2>& t) const {
+  // Calls visit(D_KI, I) for every control point I on the grid that vertex K couples to, in
+  // the row's order (the order every sum over a row takes).
+  template <class Visit>
+  void for_each_in_row(int K, Visit&& visit) const {
     const int a = K / grid_.ny(), b = K % grid_.ny();
     const Vec2* const r = row(K);
-    double sum = 0.0;
     for (int e = 0; e < kSpan; ++e) {
       const int i = a - 1 + e;
       if (i < 0 || i >= node_nx_) continue;
       for (int f = 0; f < kSpan; ++f) {
         const int j = b - 1 + f;
         if (j < 0 || j >= node_ny_) continue;
-        sum += r[e * kSpan + f].dot(t[i * node_ny_ + j]);
+        visit(r[e * kSpan + f], i * node_ny_ + j);
       }
     }
+  }
+
+  // (D t)_K = sum_I D_KI . t_I over the control points vertex K couples to.
+  double row_times(int K, const std::vector<Vec2>& t) const {
+    double sum = 0.0;
+    for_each_in_row(K, [&](const Vec2& d, int I) { sum += d.dot(t[I]); });
     return sum;
   }
 

@@ -30,7 +30,6 @@ class PressureSystem {
  public:
   void resize(const PressureGrid& grid, int node_nx, int node_ny) {
     grid_ = grid;
-    node_nx_ = node_nx;
     node_ny_ = node_ny;
     position_.assign(grid.count(), -1);
     scratch_.assign(grid.count(), 0.0);
@@ -156,21 +155,11 @@ class PressureSystem {
   void compute_diagonal() {
     const int n = size(), ny = grid_.ny();
     diagonal_.resize(n);
-    constexpr int kSpan = DivergenceOperator<P>::kSpan;
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (int k = 0; k < n; ++k) {
       const int K = unknowns_[k], a = K / ny, b = K % ny;
-      const Vec2* const r = D_->row(K);
       double sum = 0.0;
-      for (int e = 0; e < kSpan; ++e) {
-        const int i = a - 1 + e;
-        if (i < 0 || i >= node_nx_) continue;
-        for (int f = 0; f < kSpan; ++f) {
-          const int j = b - 1 + f;
-          if (j < 0 || j >= node_ny_) continue;
-          sum += r[e * kSpan + f].cwiseAbs2().dot(inverse_mass_[i * node_ny_ + j]);
-        }
-      }
+      D_->for_each_in_row(K, [&](const Vec2& d, int I) { sum += d.cwiseAbs2().dot(inverse_mass_[I]); });
       // S's diagonal: 4 for the term centred on K, 1 for each term it ends.
       double s = (stencil_[K] & 1 ? 4.0 : 0.0) + (stencil_[K] & 2 ? 4.0 : 0.0);
       if (a > 0 && stencil_[K - ny] & 1) s += 1.0;
@@ -182,7 +171,7 @@ class PressureSystem {
   }
 
   PressureGrid grid_;
-  int node_nx_ = 0, node_ny_ = 0;
+  int node_ny_ = 0;
   const DivergenceOperator<P>* D_ = nullptr;
   NodeBox nodes_, vertices_;
   double stabilization_ = 0.0;  // alpha / rho0
