@@ -11,6 +11,7 @@
 #include "core/format.hpp"
 #include "core/types.hpp"
 #include "materials/material_attribute.hpp"
+#include "materials/material_keys.hpp"
 #include "parameters/table_reader.hpp"
 
 namespace bsmpm {
@@ -30,7 +31,7 @@ struct ElasticSolid {
 
   static ElasticSolid read(TableReader& t) {
     ElasticSolid e;
-    e.density = t.number("density", Range::positive());
+    e.density = read_density(t);
     e.youngs_modulus = t.number("youngs_modulus", Range::positive());
     e.poisson_ratio = t.number_or("poisson_ratio", 0.0, Range{Bound::inclusive(0.0), Bound::exclusive(0.5)});
     e.model = t.choice_or("elastic_model", "neo_hookean", {"neo_hookean", "saint_venant_kirchhoff"}) == "neo_hookean"

@@ -9,6 +9,8 @@
 #include "core/format.hpp"
 #include "core/types.hpp"
 #include "materials/material_attribute.hpp"
+#include "materials/material_keys.hpp"
+#include "materials/newtonian_viscosity.hpp"
 #include "parameters/table_reader.hpp"
 
 namespace bsmpm {
@@ -23,8 +25,8 @@ struct IncompressibleFluid {
 
   static IncompressibleFluid read(TableReader& t) {
     IncompressibleFluid f;
-    f.density = t.number("density", Range::positive());
-    f.viscosity = t.number_or("viscosity", 0.0, Range::non_negative());
+    f.density = read_density(t);
+    f.viscosity = read_viscosity(t);
     return f;
   }
 
@@ -40,15 +42,11 @@ struct IncompressibleFluid {
 
   // The viscous (deviatoric) Cauchy stress from the velocity gradient: 2 mu dev(D), with the
   // plane-strain deviator dev(D) = D - tr(D)/3 I (as the weakly compressible fluid's).
-  Mat2 viscous_stress(const Mat2& L) const {
-    const Mat2 D = 0.5 * (L + L.transpose());
-    return 2.0 * viscosity * (D - (D.trace() / 3.0) * Mat2::Identity());
-  }
+  Mat2 viscous_stress(const Mat2& L) const { return newtonian_viscous_stress(viscosity, L); }
 
   std::string describe(const std::string& body) const {
-    const std::string viscous = viscosity > 0.0 ? format("viscosity %g Pa s", viscosity) : "inviscid (no viscous term)";
     return format("fluid stress [%s]: incompressible (pressure from the projection), rho0 = %g kg/m3, %s",
-                  body.c_str(), density, viscous.c_str());
+                  body.c_str(), density, describe_viscosity(viscosity).c_str());
   }
   MaterialAttributes attributes() const {
     return {{"viscosity", viscosity}, {"model", std::string("incompressible")}};

@@ -9,6 +9,8 @@
 #include "core/format.hpp"
 #include "core/types.hpp"
 #include "materials/material_attribute.hpp"
+#include "materials/material_keys.hpp"
+#include "materials/newtonian_viscosity.hpp"
 #include "parameters/table_reader.hpp"
 
 namespace bsmpm {
@@ -31,7 +33,7 @@ struct WeaklyCompressibleFluid {
 
   static WeaklyCompressibleFluid read(TableReader& t) {
     WeaklyCompressibleFluid f;
-    f.density = t.number("density", Range::positive());
+    f.density = read_density(t);
     if (t.has("bulk_modulus") == t.has("sound_speed"))
       t.fail(t.has("bulk_modulus") ? "sound_speed" : "bulk_modulus",
              "give exactly one of bulk_modulus [Pa] and sound_speed [m/s]");
@@ -40,7 +42,7 @@ struct WeaklyCompressibleFluid {
       const double c = t.number("sound_speed", Range::positive());
       f.bulk_modulus = f.density * c * c;
     }
-    f.viscosity = t.number_or("viscosity", 0.0, Range::non_negative());
+    f.viscosity = read_viscosity(t);
     f.eos = t.choice_or("equation_of_state", "tait", {"tait", "linear"}) == "tait" ? EquationOfState::kTait
                                                                                    : EquationOfState::kLinear;
     if (f.eos == EquationOfState::kTait)
@@ -106,13 +108,12 @@ struct WeaklyCompressibleFluid {
 
   // The start-of-run line for a body of this fluid.
   std::string describe(const std::string& body) const {
-    const std::string viscous = viscosity > 0.0 ? format("viscosity %g Pa s", viscosity) : "inviscid (no viscous term)";
     const std::string cut_off =
         min_pressure ? format(", tension cut-off p >= %g Pa (J held at %.6g)", *min_pressure, *largest_volume_ratio())
                      : "";
     return format("fluid stress [%s]: %s EOS, K = %g Pa (c0 = %.3g m/s), rho0 = %g kg/m3, %s%s", body.c_str(),
                   eos == EquationOfState::kTait ? "Tait" : "linear", bulk_modulus, sound_speed(1.0), density,
-                  viscous.c_str(), cut_off.c_str());
+                  describe_viscosity(viscosity).c_str(), cut_off.c_str());
   }
 
   // What the run file records besides the type and density.
@@ -122,15 +123,11 @@ struct WeaklyCompressibleFluid {
             {"equation_of_state", std::string(eos == EquationOfState::kTait ? "tait" : "linear")}};
   }
 
-  // Cauchy stress from the rate of deformation D = sym(L); the deviator is the
-  // plane-strain one (D_zz = 0), dev(D) = D - tr(D)/3 I.
+  // Cauchy stress from the pressure and the velocity gradient L.
   template <bool kViscous>
   Mat2 stress(double p, const Mat2& L) const {
     Mat2 sigma = -p * Mat2::Identity();
-    if constexpr (kViscous) {
-      const Mat2 D = 0.5 * (L + L.transpose());
-      sigma += 2.0 * viscosity * (D - (D.trace() / 3.0) * Mat2::Identity());
-    }
+    if constexpr (kViscous) sigma += newtonian_viscous_stress(viscosity, L);
     return sigma;
   }
 };
