@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include "core/error.hpp"
 #include "io/json.hpp"
@@ -13,36 +14,49 @@ namespace bsmpm {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Every key of summary.json with its member, in the file's order: the one list the writer and
+// the reader walk. visit(key, member, always): `always` false for the keys that summaries of
+// earlier versions lack (the reader then keeps the member's default).
+template <class Summary, class Visit>
+void for_each_field(Summary& s, Visit&& visit) {
+  visit("status", s.status, true);
+  visit("exit_status", s.exit_status, true);
+  visit("steps", s.steps, true);
+  visit("time", s.time, true);
+  visit("end_time", s.end_time, true);
+  visit("wall_seconds", s.wall_seconds, true);
+  visit("predicted_wall_seconds", s.predicted_wall_seconds, false);  // since the prediction
+  visit("threads", s.threads, true);
+  visit("cores", s.cores, true);
+  visit("particles", s.particles, true);
+  visit("particle_steps_per_second", s.particle_steps_per_second, true);
+  visit("peak_memory_mb", s.peak_memory_mb, true);
+  visit("min_dt", s.min_dt, true);
+  visit("max_dt", s.max_dt, true);
+  visit("frames", s.frames, true);
+  visit("checkpoint_time", s.checkpoint_time, false);  // since checkpoints
+  visit("checkpoints", s.checkpoints, false);
+  visit("checkpoint_seconds", s.checkpoint_seconds, false);
+  visit("pressure_solves", s.pressure_solves, false);  // since the incompressible fluid
+  visit("pressure_iterations_mean", s.pressure_iterations_mean, false);
+  visit("pressure_iterations_max", s.pressure_iterations_max, false);
+  visit("pressure_residual_max", s.pressure_residual_max, false);
+  visit("program_version", s.program_version, true);
+  visit("git_revision", s.git_revision, true);
+}
+
+}  // namespace
+
 void write_run_summary(const std::string& dir, const RunSummary& s) {
   JsonWriter w;
-  w.begin_object()
-      .field("format", "bsmpm-run-summary")
-      .field("format_version", 1)
-      .field("status", s.status)
-      .field("exit_status", s.exit_status)
-      .field("steps", s.steps)
-      .field("time", s.time)
-      .field("end_time", s.end_time)
-      .field("wall_seconds", s.wall_seconds)
-      .field("predicted_wall_seconds", s.predicted_wall_seconds)
-      .field("threads", s.threads)
-      .field("cores", s.cores)
-      .field("particles", static_cast<long>(s.particles))
-      .field("particle_steps_per_second", s.particle_steps_per_second)
-      .field("peak_memory_mb", s.peak_memory_mb)
-      .field("min_dt", s.min_dt)
-      .field("max_dt", s.max_dt)
-      .field("frames", s.frames)
-      .field("checkpoint_time", s.checkpoint_time)
-      .field("checkpoints", s.checkpoints)
-      .field("checkpoint_seconds", s.checkpoint_seconds)
-      .field("pressure_solves", s.pressure_solves)
-      .field("pressure_iterations_mean", s.pressure_iterations_mean)
-      .field("pressure_iterations_max", s.pressure_iterations_max)
-      .field("pressure_residual_max", s.pressure_residual_max)
-      .field("program_version", s.program_version)
-      .field("git_revision", s.git_revision)
-      .end_object();
+  w.begin_object().field("format", "bsmpm-run-summary").field("format_version", 1);
+  for_each_field(s, [&](const char* key, const auto& value, bool) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::size_t>) w.field(key, static_cast<long>(value));
+    else w.field(key, value);
+  });
+  w.end_object();
   const fs::path final_path = fs::path(dir) / "summary.json";
   const fs::path tmp = fs::path(dir) / "summary.json.tmp";
   {
@@ -74,35 +88,12 @@ RunSummary read_run_summary(const std::string& dir) {
     return std::get<std::string>(it->second);
   };
   RunSummary s;
-  s.status = text_of("status");
-  s.exit_status = static_cast<int>(number("exit_status"));
-  s.steps = static_cast<long>(number("steps"));
-  s.time = number("time");
-  s.end_time = number("end_time");
-  s.wall_seconds = number("wall_seconds");
-  // Absent from the summaries of versions before the prediction.
-  if (values.count("predicted_wall_seconds")) s.predicted_wall_seconds = number("predicted_wall_seconds");
-  s.threads = static_cast<int>(number("threads"));
-  s.cores = static_cast<int>(number("cores"));
-  s.particles = static_cast<std::size_t>(number("particles"));
-  s.particle_steps_per_second = number("particle_steps_per_second");
-  s.peak_memory_mb = number("peak_memory_mb");
-  s.min_dt = number("min_dt");
-  s.max_dt = number("max_dt");
-  s.frames = static_cast<int>(number("frames"));
-  if (values.count("checkpoint_time")) {  // absent before they existed
-    s.checkpoint_time = number("checkpoint_time");
-    s.checkpoints = static_cast<int>(number("checkpoints"));
-    s.checkpoint_seconds = number("checkpoint_seconds");
-  }
-  if (values.count("pressure_solves")) {  // written since the incompressible fluid
-    s.pressure_solves = static_cast<long>(number("pressure_solves"));
-    s.pressure_iterations_mean = number("pressure_iterations_mean");
-    s.pressure_iterations_max = static_cast<int>(number("pressure_iterations_max"));
-    s.pressure_residual_max = number("pressure_residual_max");
-  }
-  s.program_version = text_of("program_version");
-  s.git_revision = text_of("git_revision");
+  for_each_field(s, [&](const char* key, auto& member, bool always) {
+    using T = std::decay_t<decltype(member)>;
+    if (!always && !values.count(key)) return;
+    if constexpr (std::is_same_v<T, std::string>) member = text_of(key);
+    else member = static_cast<T>(number(key));
+  });
   return s;
 }
 
