@@ -2,6 +2,8 @@
 
 #include <omp.h>
 
+#include <cstdio>
+
 #include "core/error.hpp"
 
 namespace bsmpm::cli {
@@ -37,33 +39,43 @@ Arguments::Arguments(const std::vector<std::string>& args, const std::set<std::s
   }
 }
 
+bool Arguments::help(const std::string& text) const {
+  if (!flag("--help")) return false;
+  std::fputs(text.c_str(), stdout);
+  return true;
+}
+
 std::string Arguments::option(const std::string& name, const std::string& fallback) const {
   const auto it = options_.find(name);
   return it == options_.end() ? fallback : it->second;
 }
 
-double Arguments::number(const std::string& name, double fallback) const {
-  if (!has(name)) return fallback;
+namespace {
+// `text` read whole by `parse` (std::stod, std::stol); else a UsageError "NAME expects WHAT,
+// got 'TEXT'".
+template <class Parse>
+auto parse_whole(const std::string& name, const std::string& text, const char* what, Parse&& parse) {
   try {
     std::size_t used = 0;
-    const double v = std::stod(option(name), &used);
-    if (used != option(name).size()) throw std::invalid_argument("trailing");
+    const auto v = parse(text, &used);
+    if (used != text.size()) throw std::invalid_argument("trailing");
     return v;
   } catch (const std::exception&) {
-    throw UsageError(name + " expects a number, got '" + option(name) + "'");
+    throw UsageError(name + " expects " + what + ", got '" + text + "'");
   }
+}
+}  // namespace
+
+double Arguments::number(const std::string& name, double fallback) const {
+  if (!has(name)) return fallback;
+  return parse_whole(name, option(name), "a number",
+                     [](const std::string& t, std::size_t* used) { return std::stod(t, used); });
 }
 
 long Arguments::integer(const std::string& name, long fallback) const {
   if (!has(name)) return fallback;
-  try {
-    std::size_t used = 0;
-    const long v = std::stol(option(name), &used);
-    if (used != option(name).size()) throw std::invalid_argument("trailing");
-    return v;
-  } catch (const std::exception&) {
-    throw UsageError(name + " expects an integer, got '" + option(name) + "'");
-  }
+  return parse_whole(name, option(name), "an integer",
+                     [](const std::string& t, std::size_t* used) { return std::stol(t, used); });
 }
 
 const std::vector<std::string>& Arguments::all(const std::string& name) const {

@@ -16,6 +16,8 @@ class Arguments {
             const std::set<std::string>& options, const std::set<std::string>& repeated = {});
 
   bool flag(const std::string& name) const { return flags_.count(name) > 0; }
+  // With --help: prints `text` to stdout and answers true (the command then exits 0).
+  bool help(const std::string& text) const;
   bool has(const std::string& name) const { return options_.count(name) > 0; }
   std::string option(const std::string& name, const std::string& fallback = "") const;
   double number(const std::string& name, double fallback) const;

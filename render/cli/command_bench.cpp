@@ -89,10 +89,7 @@ void record_rate(const SceneDescription& scene, const Simulation& sim, int threa
 
 int command_bench(const std::vector<std::string>& argv) {
   Arguments args(argv, {"--help", "--json"}, {"--steps", "--warmup", "--threads"}, {"--set"});
-  if (args.flag("--help")) {
-    std::fputs(kHelp, stdout);
-    return kOk;
-  }
+  if (args.help(kHelp)) return kOk;
   if (args.positional().size() != 1) throw UsageError("bench expects one scene file (see bsmpm bench --help)");
   const long steps = args.integer("--steps", 200), warmup = args.integer("--warmup", 20);
   if (steps < 1 || warmup < 0) throw UsageError("--steps must be >= 1 and --warmup >= 0");

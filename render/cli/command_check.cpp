@@ -43,10 +43,7 @@ const char* kHelp =
 
 int command_check(const std::vector<std::string>& argv) {
   Arguments args(argv, {"--help", "--build"}, {"--threads", "--out"}, {"--set"});
-  if (args.flag("--help")) {
-    std::fputs(kHelp, stdout);
-    return kOk;
-  }
+  if (args.help(kHelp)) return kOk;
   if (args.positional().size() != 1) throw UsageError("check expects one scene file (see bsmpm check --help)");
   const int threads = apply_thread_option(args);
   const SceneDescription scene = load_scene(args.positional()[0], args.all("--set"), {render::render_scene_extension()});

@@ -39,10 +39,7 @@ const char* kHelp =
 
 int command_compare(const std::vector<std::string>& argv) {
   Arguments args(argv, {"--help"}, {"--tolerance", "--diff"});
-  if (args.flag("--help")) {
-    std::fputs(kHelp, stdout);
-    return kOk;
-  }
+  if (args.help(kHelp)) return kOk;
   if (args.positional().size() != 2) throw UsageError("compare expects two PNG files (see bsmpm compare --help)");
   const std::optional<render::ImageTolerance> tolerance =
       args.has("--tolerance") ? std::optional(render::ImageTolerance::parse(args.option("--tolerance"))) : std::nullopt;

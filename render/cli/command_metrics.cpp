@@ -69,10 +69,7 @@ Series read_measured_series(const std::string& path, double time_factor) {
 int command_metrics(const std::vector<std::string>& argv) {
   Arguments args(argv, {"--help", "--json", "--raw"},
                  {"--study", "--series", "--column", "--rate", "--window", "--series-file", "--length"});
-  if (args.flag("--help")) {
-    std::fputs(kHelp, stdout);
-    return kOk;
-  }
+  if (args.help(kHelp)) return kOk;
   SensorModel sensor;
   std::unique_ptr<StudyDescription> study;
   if (args.has("--study")) {

@@ -64,10 +64,7 @@ int command_movie(const std::vector<std::string>& argv) {
   std::set<std::string> options = picture_options();
   options.insert({"--out", "--fps", "--slowmo"});
   Arguments args(argv, {"--help", "--quiet"}, options);
-  if (args.flag("--help")) {
-    std::fputs(kHelp.c_str(), stdout);
-    return kOk;
-  }
+  if (args.help(kHelp)) return kOk;
   if (args.positional().size() != 1) throw UsageError("movie expects one run file (see bsmpm movie --help)");
   if (!args.has("--out")) throw UsageError("movie needs --out FILE.mp4 (see bsmpm movie --help)");
   const std::string out = args.option("--out");

@@ -100,10 +100,7 @@ int command_render(const std::vector<std::string>& argv) {
   std::set<std::string> options = picture_options();
   options.insert({"--out", "--layout", "--frames", "--times", "--times-star"});
   Arguments args(argv, {"--help", "--quiet"}, options);
-  if (args.flag("--help")) {
-    std::fputs(kHelp.c_str(), stdout);
-    return kOk;
-  }
+  if (args.help(kHelp)) return kOk;
   if (args.positional().size() != 1) throw UsageError("render expects one run file (see bsmpm render --help)");
   if (!args.has("--out")) throw UsageError("render needs --out DIR or --out FILE.png (see bsmpm render --help)");
   const std::string out = args.option("--out");

@@ -182,10 +182,7 @@ int resume_run(const Arguments& args, const std::vector<std::string>& argv, int 
 int command_run(const std::vector<std::string>& argv) {
   Arguments args(argv, {"--help", "--force", "--quiet"}, {"--out", "--threads", "--resume", "--checkpoint-every"},
                  {"--set"});
-  if (args.flag("--help")) {
-    std::fputs(kHelp, stdout);
-    return kOk;
-  }
+  if (args.help(kHelp)) return kOk;
   const int threads = apply_thread_option(args);
   const std::string every = args.option("--checkpoint-every");
   const CheckpointSchedule schedule = CheckpointSchedule::chosen(args.has("--checkpoint-every") ? &every : nullptr);

@@ -142,10 +142,7 @@ std::string failure_reason(const fs::path& log) {
 int command_study(const std::vector<std::string>& argv) {
   Arguments args(argv, {"--help", "--slurm", "--dry-run", "--keep-going", "--unlock", "--quiet"},
                  {"--dir", "--cores", "--partition", "--time-limit", "--jobs"}, {"--set", "--axis"});
-  if (args.flag("--help")) {
-    std::fputs(kHelp, stdout);
-    return kOk;
-  }
+  if (args.help(kHelp)) return kOk;
   if (args.positional().size() != 1) throw UsageError("study expects one study file (see bsmpm study --help)");
   const bool slurm = args.flag("--slurm");
   if (!slurm && (args.has("--partition") || args.has("--time-limit") || args.has("--jobs")))

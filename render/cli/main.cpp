@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/commands.hpp"
@@ -29,6 +30,17 @@ void default_to_short_spin(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
   if (setenv("GOMP_SPINCOUNT", "1000", 1) != 0) return;
   execv("/proc/self/exe", argv);
+}
+
+// The exit status of the error that stopped a command (the table in kHelp and the README).
+int exit_status_of(const std::exception& e) {
+  using namespace bsmpm;
+  if (dynamic_cast<const InputError*>(&e) || dynamic_cast<const SceneError*>(&e) || dynamic_cast<const UsageError*>(&e) ||
+      dynamic_cast<const ResourceError*>(&e))
+    return cli::kBadInput;
+  if (dynamic_cast<const NumericalError*>(&e)) return cli::kUnstable;
+  if (dynamic_cast<const OutOfSpaceError*>(&e)) return cli::kOutOfSpace;
+  return cli::kFailure;
 }
 
 const char* kHelp =
@@ -87,36 +99,19 @@ int main(int argc, char** argv) {
   }
   const std::string command = args[0];
   args.erase(args.begin());
+  using Command = int (*)(const std::vector<std::string>&);
+  static const std::pair<const char*, Command> kCommands[] = {
+      {"run", cli::command_run},     {"check", cli::command_check},     {"bench", cli::command_bench},
+      {"render", cli::command_render}, {"movie", cli::command_movie},   {"compare", cli::command_compare},
+      {"study", cli::command_study}, {"metrics", cli::command_metrics},
+  };
   try {
-    if (command == "run") return cli::command_run(args);
-    if (command == "check") return cli::command_check(args);
-    if (command == "bench") return cli::command_bench(args);
-    if (command == "render") return cli::command_render(args);
-    if (command == "movie") return cli::command_movie(args);
-    if (command == "compare") return cli::command_compare(args);
-    if (command == "study") return cli::command_study(args);
-    if (command == "metrics") return cli::command_metrics(args);
+    for (const auto& [name, run] : kCommands)
+      if (command == name) return run(args);
     throw UsageError("unknown command '" + command + "' (see bsmpm --help)");
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
-    return cli::kBadInput;
-  } catch (const SceneError& e) {
-    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
-    return cli::kBadInput;
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
-    return cli::kBadInput;
-  } catch (const ResourceError& e) {
-    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
-    return cli::kBadInput;
-  } catch (const NumericalError& e) {
-    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
-    return cli::kUnstable;
-  } catch (const OutOfSpaceError& e) {
-    std::fprintf(stderr, "bsmpm: error: out of space: %s\n", e.what());
-    return cli::kOutOfSpace;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "bsmpm: error: %s\n", e.what());
-    return cli::kFailure;
+    const int status = exit_status_of(e);
+    std::fprintf(stderr, "bsmpm: error: %s%s\n", status == cli::kOutOfSpace ? "out of space: " : "", e.what());
+    return status;
   }
 }

@@ -18,23 +18,19 @@ ValueRange read_range(TableReader& t, const std::string& key) {
 
 }  // namespace
 
+namespace {
+// Each member `later` sets replaces `mine`'s: every option named once.
+template <class... Members>
+void take_set(RenderOptions& mine, const RenderOptions& later, Members... members) {
+  ((later.*members ? void(mine.*members = later.*members) : void()), ...);
+}
+}  // namespace
+
 void RenderOptions::override_with(const RenderOptions& later) {
-  auto take = [](auto& mine, const auto& theirs) {
-    if (theirs) mine = theirs;
-  };
-  take(width, later.width);
-  take(height, later.height);
-  take(field, later.field);
-  take(colormap, later.colormap);
-  take(solid_colormap, later.solid_colormap);
-  take(view, later.view);
+  using O = RenderOptions;
+  take_set(*this, later, &O::width, &O::height, &O::field, &O::colormap, &O::solid_colormap, &O::view);
   for (const auto& [key, range] : later.ranges) ranges[key] = range;
-  take(water_range, later.water_range);
-  take(solid_range, later.solid_range);
-  take(splat_scale, later.splat_scale);
-  take(colorbar, later.colorbar);
-  take(fps, later.fps);
-  take(slowmo, later.slowmo);
+  take_set(*this, later, &O::water_range, &O::solid_range, &O::splat_scale, &O::colorbar, &O::fps, &O::slowmo);
 }
 
 ColorBarPlacement color_bar_placement_named(const std::string& name) {
