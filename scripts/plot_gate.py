@@ -8,7 +8,6 @@ published curves in tests/data/walhorn_elastic_gate/. Bottom: P* on the gate's l
 (probes P_h20, P_h40, P_h60) of the first run, as a centred moving average over --window
 seconds (0: every step). Prints each run's peak and its time.
 """
-import argparse
 import glob
 import json
 import os
@@ -21,7 +20,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_probes import moving_average  # noqa: E402
+from plot_probes import finish_figure, moving_average, run_labels, runs_argument_parser  # noqa: E402
 from run_csv import read_run_csv  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -105,21 +104,12 @@ def draw(runs, labels, window):
     bx.grid(alpha=0.3)
     bx.legend(fontsize=8)
     fig.suptitle("Elastic gate (Walhorn et al. 2005 benchmark): paper Figs. 11, 12 and 14", fontsize=11)
-    fig.text(0.01, 0.005, provenance(runs), fontsize=6, color="0.4", va="bottom")
-    fig.tight_layout(rect=(0, 0.02, 1, 1))
-    return fig
+    return finish_figure(fig, provenance(runs))
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("runs", nargs="+")
-    ap.add_argument("--labels", nargs="*")
-    ap.add_argument("--output", default="gate.png")
-    ap.add_argument("--window", type=float, default=0.0)
-    args = ap.parse_args()
-    labels = args.labels or [os.path.basename(os.path.normpath(r)) for r in args.runs]
-    if len(labels) != len(args.runs):
-        sys.exit("plot_gate: give one --labels entry per run directory")
+    args = runs_argument_parser(__doc__, "runs", "gate.png").parse_args()
+    labels = run_labels("plot_gate", args.runs, args.labels, lambda r: os.path.basename(os.path.normpath(r)))
     draw(args.runs, labels, args.window).savefig(args.output, dpi=110)
     print(f"plot_gate: wrote {args.output}")
 

@@ -50,6 +50,31 @@ def peak_band(z_mm):
     return None
 
 
+def finish_figure(fig, footer):
+    """The data's provenance in small grey type at the bottom left, and a layout that leaves it room."""
+    fig.text(0.01, 0.005, footer, fontsize=6, color="0.4", va="bottom")
+    fig.tight_layout(rect=(0, 0.02, 1, 1))
+    return fig
+
+
+def runs_argument_parser(doc, runs, output_default):
+    """The options every plot of runs takes: the run directories (`runs`), --labels, --output, --window."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument(runs, nargs="+")
+    ap.add_argument("--labels", nargs="*")
+    ap.add_argument("--output", default=output_default)
+    ap.add_argument("--window", type=float, default=0.0)
+    return ap
+
+
+def run_labels(program, runs, labels, default):
+    """The given --labels, one per run, or default(run) for each run."""
+    labels = labels or [default(r) for r in runs]
+    if len(labels) != len(runs):
+        sys.exit(f"{program}: give one --labels entry per run directory")
+    return labels
+
+
 def moving_average(t, y, width):
     if width <= 0:
         return y
@@ -134,25 +159,18 @@ def draw(run_dirs, labels, experiment=None, probes=None, window=0.0, sensor=Fals
             (", h = " + " and ".join(f"{h * 1e3:g} mm" for h in grids) if grids else "")
     fig.suptitle(title, fontsize=10)
     axes[-1, 0].set_xlabel("T* = t sqrt(g/H)")
-    fig.text(0.01, 0.005, ", ".join(dict.fromkeys(f[2] for f in facts)), fontsize=6, color="0.4", va="bottom")
-    fig.tight_layout(rect=(0, 0.02, 1, 1))
-    return fig
+    return finish_figure(fig, ", ".join(dict.fromkeys(f[2] for f in facts)))
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("run_dirs", nargs="+")
-    ap.add_argument("--labels", nargs="*")
+    ap = runs_argument_parser(__doc__, "run_dirs", None)
     ap.add_argument("--experiment", choices=sorted(EXPERIMENTS))
-    ap.add_argument("--output", default=None)
     ap.add_argument("--probes", nargs="*")
-    ap.add_argument("--window", type=float, default=0.0)
     ap.add_argument("--sensor", action="store_true")
     ap.add_argument("--title", default=None)
     args = ap.parse_args()
-    labels = args.labels or [os.path.basename(r.rstrip("/")) if len(args.run_dirs) > 1 else "bsmpm" for r in args.run_dirs]
-    if len(labels) != len(args.run_dirs):
-        sys.exit("plot_probes: give one --labels entry per run directory")
+    labels = run_labels("plot_probes", args.run_dirs, args.labels,
+                        lambda r: os.path.basename(r.rstrip("/")) if len(args.run_dirs) > 1 else "bsmpm")
     fig = draw(args.run_dirs, labels, args.experiment, args.probes, args.window, args.sensor, args.title)
     out = args.output or os.path.join(args.run_dirs[0], "pressure_probes.png")
     fig.savefig(out, dpi=110)
