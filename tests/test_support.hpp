@@ -1,4 +1,5 @@
-// Helpers shared by the test suites: repository paths and running a scene in-process.
+// Helpers shared by the test suites: repository paths, running the program (or a script) and
+// checking what it said, and running a scene in-process.
 #pragma once
 
 #include <sys/wait.h>
@@ -9,11 +10,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
+
+#include <catch2/catch.hpp>
 
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
@@ -46,6 +50,15 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
   return d;
 }
 
+// scratch_dir(name), made on the first call and the same directory on every later one: a test
+// file's scratch space, which its tests share.
+inline const std::filesystem::path& scratch_root(const std::string& name) {
+  static std::map<std::string, std::filesystem::path> made;
+  auto it = made.find(name);
+  if (it == made.end()) it = made.emplace(name, scratch_dir(name)).first;
+  return it->second;
+}
+
 inline std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -58,13 +71,31 @@ struct ProgramResult {
   std::string output;
 };
 
+// Runs a shell command line with its standard output and error into `log`.
+inline ProgramResult run_shell(const std::string& command, const std::filesystem::path& log) {
+  const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(log)};
+}
+
 // Runs the built program with `args` (a shell command line), its output kept in `log`;
 // through `prefix` if given (e.g. "env NAME=VALUE", "prlimit --as=N --").
 inline ProgramResult run_program(const std::string& args, const std::filesystem::path& log,
                                  const std::string& prefix = "") {
-  const int status = std::system(
-      (prefix + (prefix.empty() ? "" : " ") + BSMPM_EXECUTABLE + " " + args + " > " + log.string() + " 2>&1").c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(log)};
+  return run_shell(prefix + (prefix.empty() ? "" : " ") + BSMPM_EXECUTABLE + " " + args, log);
+}
+
+inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// Runs `run(args)` (a ProgramResult) and checks that it stopped on a usage error: exit status
+// 2 and `message` in its output. Returns the output for the caller's further checks.
+template <class Run>
+std::string check_usage_error(Run&& run, const std::string& args, const std::string& message) {
+  INFO("bsmpm " << args);
+  const ProgramResult r = run(args);
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, message));
+  return r.output;
 }
 
 // Loads scenes/NAME with overrides, builds and runs it to its end time.

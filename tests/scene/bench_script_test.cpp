@@ -15,17 +15,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() {
-  static const fs::path root = test::scratch_dir("bench_script");
-  return root;
-}
+const fs::path& scratch() { return test::scratch_root("bench_script"); }
 
 test::ProgramResult bench_script(const std::string& args) {
   const fs::path log = scratch() / "bench.log";
-  const std::string cmd = "BSMPM_EXECUTABLE='" + std::string(BSMPM_EXECUTABLE) + "' " +
-                          test::source_path("scripts/bench") + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::read_text(log)};
+  return test::run_shell("BSMPM_EXECUTABLE='" + std::string(BSMPM_EXECUTABLE) + "' " +
+                             test::source_path("scripts/bench") + " " + args,
+                         log);
 }
 
 // The line of `text` that starts with `label` followed by a space, its words joined by one

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using test::contains;
 
 // The program with BSMPM_CALIBRATION set to `calibration`.
 test::ProgramResult bsmpm_calibrated(const fs::path& calibration, const std::string& args) {

@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using test::contains;
 
 // The shipped scene's grid and particles, from `bsmpm check`'s own lines: "grid     N x M cells
 // of A x B mm" and "ok: N particles".

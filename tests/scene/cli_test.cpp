@@ -19,21 +19,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() {
-  static const fs::path root = test::scratch_dir("cli");
-  return root;
+const fs::path& scratch() { return test::scratch_root("cli"); }
+
+// The program, run through `prefix` if given (e.g. "env VAR=value").
+test::ProgramResult bsmpm_with(const std::string& args, const std::string& prefix = "") {
+  return test::run_program(args, scratch() / "program.log", prefix);
 }
 
-test::ProgramResult bsmpm_with(const std::string& args) { return test::run_program(args, scratch() / "program.log"); }
-
-// The program run through `prefix` (e.g. "env VAR=value").
-test::ProgramResult bsmpm_with(const std::string& args, const std::string& prefix) {
-  const fs::path log = scratch() / "program.log";
-  const int status = std::system((prefix + " " + BSMPM_EXECUTABLE + " " + args + " > " + log.string() + " 2>&1").c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::read_text(log)};
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using test::contains;
 
 const std::string kScene = test::scene_path("hydrostatic_tank.toml");
 // A run of a few steps: enough to start writing, fast to finish.
@@ -98,11 +91,7 @@ TEST_CASE("Usage errors exit 2 with a message naming the problem and write nothi
       {"bench " + kScene + " --steps 0", "--steps must be >= 1"},
   };
   for (const Case& c : cases) {
-    INFO("bsmpm " << c.args);
-    const auto r = bsmpm_with(c.args);
-    INFO(r.output);
-    CHECK(r.status == 2);
-    CHECK(contains(r.output, c.message));
+    test::check_usage_error([](const std::string& args) { return bsmpm_with(args); }, c.args, c.message);
     CHECK(!fs::exists(out));
   }
 }

@@ -59,7 +59,7 @@ Outcome run_limited(long kib, const std::string& args, const fs::path& log) {
   return {WIFEXITED(status), WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::read_text(log)};
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using test::contains;
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;

@@ -39,9 +39,9 @@ TEST_CASE("check refuses a scene that would not fit in memory before seeding it,
   const std::string limit = "ulimit -v 4194304 && ", particles = "7.2e+07 particles", more;
 #endif
   const fs::path log = test::scratch_dir("guard_memory") / "log";
-  const int code = test::run_command(limit + program() + " check " + test::scene_path("lobovsky_h300.toml") +
-                                         " --set grid.cell_size=0.0001" + more, log);
-  const std::string text = test::read_text(log);
+  const auto [code, text] = test::run_shell(limit + program() + " check " + test::scene_path("lobovsky_h300.toml") +
+                                            " --set grid.cell_size=0.0001" + more,
+                                            log);
   INFO(text);
   CHECK(code == 2);
   CHECK(text.find(particles) != std::string::npos);
@@ -50,10 +50,10 @@ TEST_CASE("check refuses a scene that would not fit in memory before seeding it,
 
 TEST_CASE("run refuses a material whose sound speed makes the step absurdly small", "[guards]") {
   const fs::path dir = test::scratch_dir("guard_stiff");
-  const int code = test::run_command(program() + " run " + test::scene_path("hydrostatic_tank.toml") + " --out " +
-                                         (dir / "run").string() + " --set materials.water.bulk_modulus=1e30",
-                                     dir / "log");
-  const std::string text = test::read_text(dir / "log");
+  const auto [code, text] = test::run_shell(program() + " run " + test::scene_path("hydrostatic_tank.toml") +
+                                            " --out " +
+                                            (dir / "run").string() + " --set materials.water.bulk_modulus=1e30",
+                                            dir / "log");
   INFO(text);
   CHECK(code == 2);
   CHECK(text.find("time steps to t =") != std::string::npos);
@@ -82,12 +82,11 @@ TEST_CASE("The output guard refuses what the disk cannot hold, and warns of long
 TEST_CASE("A particle leaving the density range stops the run within its step, named", "[guards]") {
   // A narrow range that the dam break leaves within a few steps of its first motion.
   const fs::path dir = test::scratch_dir("guard_density");
-  const int code = test::run_command(program() + " run " + test::scene_path("lobovsky_h300.toml") + " --out " +
-                                         (dir / "run").string() +
-                                         " --quiet --threads 1 --set grid.cell_size=0.02 --set time.end=0.2"
-                                         " --set solver.density_range=[0.999,1.001]",
-                                     dir / "log");
-  const std::string text = test::read_text(dir / "log");
+  const auto [code, text] = test::run_shell(program() + " run " + test::scene_path("lobovsky_h300.toml") + " --out " +
+                                            (dir / "run").string() +
+                                            " --quiet --threads 1 --set grid.cell_size=0.02 --set time.end=0.2"
+                                            " --set solver.density_range=[0.999,1.001]",
+                                            dir / "log");
   INFO(text);
   CHECK(code == 3);
   CHECK(text.find("numerical instability at step ") != std::string::npos);

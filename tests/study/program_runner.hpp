@@ -11,15 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "test_support.hpp"  // read_text
+#include "test_support.hpp"  // run_shell
 
 namespace bsmpm::test {
 
 // Runs a shell command with stdout and stderr into `log`; returns its exit status, or -1 if
 // it did not exit normally.
 inline int run_command(const std::string& command, const std::filesystem::path& log) {
-  const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run_shell(command, log).status;
 }
 
 // A CSV without quoted fields: the header and one map per row.

@@ -19,10 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() {
-  static const fs::path root = test::scratch_dir("render_cli");
-  return root;
-}
+const fs::path& scratch() { return test::scratch_root("render_cli"); }
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path d = scratch() / name;
@@ -31,19 +28,11 @@ fs::path fresh_dir(const std::string& name) {
   return d;
 }
 
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
+using Result = test::ProgramResult;  // status -1: it did not exit (a signal)
 
 Result run_program(const std::string& args) {
-  const fs::path log = scratch() / "program.log";
-  const int status = std::system((std::string(BSMPM_EXECUTABLE) + " " + args + " > " + log.string() + " 2>&1").c_str());
-  std::ifstream in(log);
-  Result r;
-  r.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  REQUIRE(WIFEXITED(status));
-  r.status = WEXITSTATUS(status);
+  Result r = test::run_program(args, scratch() / "program.log");
+  REQUIRE(r.status != -1);
   return r;
 }
 
