@@ -74,6 +74,18 @@ Series experiment_z30() {
   return s;
 }
 
+// T* and P* (columns 1 and 3) of the run's sensor P_z30.
+Series simulated_z30(const Simulation& sim) {
+  const Probe* probe = test::find_probe(sim, "P_z30");
+  REQUIRE(probe != nullptr);
+  Series s;
+  for (std::size_t r = 0; r < probe->row_count(); ++r) {
+    s.T.push_back(probe->row(r)[1]);
+    s.P.push_back(probe->row(r)[3]);
+  }
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("Lobovsky dam break at h = 10 mm: arrival and plateau at z = 30 mm against the experiment",
@@ -81,13 +93,7 @@ TEST_CASE("Lobovsky dam break at h = 10 mm: arrival and plateau at z = 30 mm aga
   // Up to T* = 5.5, the end of the plateau window (t = T* sqrt(H/g)).
   const double end = kPlateauTo * std::sqrt(0.3 / 9.81);
   const auto run = test::run_scene("lobovsky_h300.toml", {"grid.cell_size=0.01", "time.end=" + std::to_string(end)});
-  const Probe* probe = test::find_probe(*run.sim, "P_z30");
-  REQUIRE(probe != nullptr);
-  Series sim;
-  for (std::size_t r = 0; r < probe->row_count(); ++r) {
-    sim.T.push_back(probe->row(r)[1]);
-    sim.P.push_back(probe->row(r)[3]);
-  }
+  const Series sim = simulated_z30(*run.sim);
   const Series exp = experiment_z30();
   const double arrival_sim = arrival(sim), arrival_exp = arrival(exp);
   const double plateau_sim = plateau(sim), plateau_exp = plateau(exp);
@@ -110,13 +116,7 @@ TEST_CASE("Lobovsky dam break, incompressible, at h = 10 mm: arrival and plateau
   const double end = kPlateauTo * std::sqrt(0.3 / 9.81);
   const auto run = test::run_scene("lobovsky_h300_incompressible.toml",
                                    {"grid.cell_size=0.01", "time.end=" + std::to_string(end)});
-  const Probe* probe = test::find_probe(*run.sim, "P_z30");
-  REQUIRE(probe != nullptr);
-  Series sim;
-  for (std::size_t r = 0; r < probe->row_count(); ++r) {
-    sim.T.push_back(probe->row(r)[1]);
-    sim.P.push_back(probe->row(r)[3]);
-  }
+  const Series sim = simulated_z30(*run.sim);
   const Series exp = experiment_z30();
   const double arrival_sim = arrival(sim), arrival_exp = arrival(exp);
   const double ratio = plateau(sim) / plateau(exp);
