@@ -37,6 +37,18 @@ struct BodyMotion {
   double mass = 0.0;
 };
 
+// The gap in x between the surfaces of body `behind` (its front, largest x) and of body
+// `ahead` (its back, smallest x): their particles' distance less half of each one's spacing.
+double gap_x(const Simulation& sim, int behind, int ahead) {
+  const Particles& ps = sim.particles();
+  const Body& a = sim.bodies()[behind];
+  const Body& b = sim.bodies()[ahead];
+  double front = -1e9, back = 1e9;
+  for (std::size_t p = a.begin; p < a.end; ++p) front = std::max(front, ps.x[p].x());
+  for (std::size_t p = b.begin; p < b.end; ++p) back = std::min(back, ps.x[p].x());
+  return back - front - 0.5 * (a.spacing.x() + b.spacing.x());
+}
+
 BodyMotion motion(const Simulation& sim, int body) {
   const Particles& ps = sim.particles();
   const Body& b = sim.bodies()[body];
@@ -191,13 +203,7 @@ double largest_gap_with_force(int order, bool distance_check, double* closest_ga
   auto sim = build_simulation(scene);
   double largest = -1.0, smallest = 1e9;
   test::step_through(*sim, scene, [&](const Simulation& s) {
-    const Particles& ps = s.particles();
-    const Body& left = s.bodies()[0];
-    const Body& right = s.bodies()[1];
-    double left_front = -1e9, right_back = 1e9;
-    for (std::size_t p = left.begin; p < left.end; ++p) left_front = std::max(left_front, ps.x[p].x());
-    for (std::size_t p = right.begin; p < right.end; ++p) right_back = std::min(right_back, ps.x[p].x());
-    const double gap = right_back - left_front - 0.5 * (left.spacing.x() + right.spacing.x());
+    const double gap = gap_x(s, 0, 1);
     smallest = std::min(smallest, gap);
     if (s.last_step().contact_impulse > 0.0) largest = std::max(largest, gap);
   });
@@ -278,13 +284,9 @@ TEST_CASE("A rigid body moving at a prescribed velocity pushes an elastic block 
   auto sim = build_simulation(scene);
   double deepest = 1e9;  // smallest gap between the piston's front face and the block
   test::step_through(*sim, scene, [&](const Simulation& s) {
+    deepest = std::min(deepest, gap_x(s, 0, 1));
     const Particles& ps = s.particles();
     const Body& piston = s.bodies()[0];
-    const Body& block = s.bodies()[1];
-    double front = -1e9, back = 1e9;
-    for (std::size_t p = piston.begin; p < piston.end; ++p) front = std::max(front, ps.x[p].x());
-    for (std::size_t p = block.begin; p < block.end; ++p) back = std::min(back, ps.x[p].x());
-    deepest = std::min(deepest, back - front - 0.5 * (piston.spacing.x() + block.spacing.x()));
     for (std::size_t p = piston.begin; p < piston.end; ++p) REQUIRE(ps.v[p] == Vec2(0.5, 0.0));
   });
   const BodyMotion block = motion(*sim, 1);

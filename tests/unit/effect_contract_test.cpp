@@ -13,6 +13,7 @@
 #include "step/effects/local_damping.hpp"
 #include "step/effects/rigid_motion.hpp"
 #include "step/effects/tank_walls.hpp"
+#include "unit/one_body_state.hpp"
 
 using namespace bsmpm;
 
@@ -62,17 +63,11 @@ class Both final : public Logging<Both> {
 
 // A few fluid particles on a small grid.
 StepState<2> small_state() {
-  StepState<2> st;
-  st.grid = Grid<2>(Vec2(0.0, 0.0), Vec2(0.1, 0.1), 6, 6);
-  Body body;
-  body.name = "water";
-  body.material = WeaklyCompressibleFluid{};
-  for (int k = 0; k < 9; ++k) st.particles.push_back(Vec2(0.2 + 0.02 * (k % 3), 0.2 + 0.02 * (k / 3)), 0.1, 1e-4, 0);
-  body.end = st.particles.size();
-  body.spacing = Vec2(0.02, 0.02);
-  st.bodies.push_back(body);
-  st.layers.resize(1);
-  return st;
+  return test::one_body_state(Grid<2>(Vec2(0.0, 0.0), Vec2(0.1, 0.1), 6, 6), "water", WeaklyCompressibleFluid{},
+                              Vec2(0.02, 0.02), [](Particles& ps) {
+                                for (int k = 0; k < 9; ++k)
+                                  ps.push_back(Vec2(0.2 + 0.02 * (k % 3), 0.2 + 0.02 * (k / 3)), 0.1, 1e-4, 0);
+                              });
 }
 
 }  // namespace

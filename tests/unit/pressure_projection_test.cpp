@@ -8,6 +8,7 @@
 
 #include "step/bsmpm_simulation.hpp"
 #include "step/incompressible/pressure_projection.hpp"
+#include "unit/one_body_state.hpp"
 
 using namespace bsmpm;
 
@@ -22,25 +23,16 @@ struct WaterBox {
 };
 
 WaterBox water_box(int columns = 20) {
-  StepState<2> st;
-  const double h = 0.1;
-  st.grid = Grid<2>(Vec2(0.0, 0.0), Vec2(h, h), 16, 12);
-  Body body;
-  body.name = "water";
+  const double h = 0.1, s = h / 2, V = s * s;
   IncompressibleFluid water;
   water.density = 1000.0;
-  body.material = water;
-  body.begin = 0;
-  const double s = h / 2, V = s * s;
-  for (int i = 0; i < columns; ++i)
-    for (int j = 0; j < 12; ++j) st.particles.push_back(Vec2((i + 0.5) * s, (j + 0.5) * s), 1000.0 * V, V, 0);
-  body.end = st.particles.size();
-  body.spacing = Vec2(s, s);
-  st.bodies.push_back(body);
-  st.layers.resize(1);
-  SolverSettings settings;
-  WaterBox box{std::make_unique<BsmpmSimulation<2>>(std::move(st), settings, std::vector<std::unique_ptr<Effect<2>>>{},
-                                                    std::vector<std::unique_ptr<Probe>>{})};
+  StepState<2> st = test::one_body_state(Grid<2>(Vec2(0.0, 0.0), Vec2(h, h), 16, 12), "water", water, Vec2(s, s),
+                                         [&](Particles& ps) {
+                                           for (int i = 0; i < columns; ++i)
+                                             for (int j = 0; j < 12; ++j)
+                                               ps.push_back(Vec2((i + 0.5) * s, (j + 0.5) * s), 1000.0 * V, V, 0);
+                                         });
+  WaterBox box{test::bare_simulation(std::move(st), SolverSettings{})};
   box.sim->compute_weights();
   box.sim->particle_to_grid();
   return box;

@@ -6,6 +6,7 @@
 
 #include "step/bsmpm_simulation.hpp"
 #include "step/passes/grid_to_particle.hpp"
+#include "unit/one_body_state.hpp"
 
 using namespace bsmpm;
 
@@ -20,32 +21,24 @@ struct Order {
 // to the walls), random masses, velocities and stresses, and no effects at all.
 template <int P>
 std::unique_ptr<BsmpmSimulation<P>> random_cloud(unsigned seed) {
-  StepState<P> st;
-  st.grid = Grid<P>(Vec2(0.0, 0.0), Vec2(0.1, 0.1), 12, 9);
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> ux(0.0, 1.2), uy(0.0, 0.9), um(0.5, 2.0), uv(-1.0, 1.0);
-  Body body;
-  body.name = "cloud";
   WeaklyCompressibleFluid fluid;
   fluid.bulk_modulus = 1e4;
-  body.material = fluid;
-  body.begin = 0;
-  for (int k = 0; k < 400; ++k) {
-    st.particles.push_back(Vec2(ux(rng), uy(rng)), um(rng), 1e-3, 0);
-    st.particles.v.back() = Vec2(uv(rng), uv(rng));
-    Mat2 s;
-    s << uv(rng), uv(rng), 0.0, uv(rng);
-    s(1, 0) = s(0, 1);
-    st.particles.stress.back() = 1e3 * s;
-  }
-  body.end = st.particles.size();
-  body.spacing = Vec2(0.05, 0.05);
-  st.bodies.push_back(body);
-  st.layers.resize(1);
+  StepState<P> st = test::one_body_state(Grid<P>(Vec2(0.0, 0.0), Vec2(0.1, 0.1), 12, 9), "cloud", fluid,
+                                         Vec2(0.05, 0.05), [&](Particles& ps) {
+                                           for (int k = 0; k < 400; ++k) {
+                                             ps.push_back(Vec2(ux(rng), uy(rng)), um(rng), 1e-3, 0);
+                                             ps.v.back() = Vec2(uv(rng), uv(rng));
+                                             Mat2 s;
+                                             s << uv(rng), uv(rng), 0.0, uv(rng);
+                                             s(1, 0) = s(0, 1);
+                                             ps.stress.back() = 1e3 * s;
+                                           }
+                                         });
   SolverSettings settings;
   settings.mass_cutoff_ratio = 0.0;  // keep every node: conservation is then exact
-  return std::make_unique<BsmpmSimulation<P>>(std::move(st), settings, std::vector<std::unique_ptr<Effect<P>>>{},
-                                              std::vector<std::unique_ptr<Probe>>{});
+  return test::bare_simulation(std::move(st), settings);
 }
 
 }  // namespace
@@ -139,24 +132,18 @@ TEMPLATE_TEST_CASE("One step of a linear velocity field moves and deforms the pa
   constexpr int P = TestType::value;
   const double h = 0.1, dt = 1e-3;
   const int cells = 30, lo = 5, hi = 25;  // the block covers cells [5, 25) in x and y
-  StepState<P> st;
-  st.grid = Grid<P>(Vec2(0.0, 0.0), Vec2(h, h), cells, cells);
   Mat2 A;
   A << 0.3, -1.2, 0.7, 0.1;
   const Vec2 b(0.5, -0.25);
-  Body body;
-  body.name = "block";
-  body.material = ElasticSolid{};
-  body.spacing = Vec2(h / 2, h / 2);
-  for (int i = 2 * lo; i < 2 * hi; ++i)
-    for (int j = 2 * lo; j < 2 * hi; ++j) {
-      const Vec2 x((i + 0.5) * h / 2, (j + 0.5) * h / 2);
-      st.particles.push_back(x, 1.0, h * h / 4, 0);
-      st.particles.v.back() = A * x + b;
-    }
-  body.end = st.particles.size();
-  st.bodies.push_back(body);
-  st.layers.resize(1);
+  StepState<P> st = test::one_body_state(Grid<P>(Vec2(0.0, 0.0), Vec2(h, h), cells, cells), "block", ElasticSolid{},
+                                         Vec2(h / 2, h / 2), [&](Particles& ps) {
+                                           for (int i = 2 * lo; i < 2 * hi; ++i)
+                                             for (int j = 2 * lo; j < 2 * hi; ++j) {
+                                               const Vec2 x((i + 0.5) * h / 2, (j + 0.5) * h / 2);
+                                               ps.push_back(x, 1.0, h * h / 4, 0);
+                                               ps.v.back() = A * x + b;
+                                             }
+                                         });
   SolverSettings settings;
   settings.mass_cutoff_ratio = 0.0;
   const Particles before = st.particles;
