@@ -49,7 +49,9 @@ RunOutcome run_to_end(Simulation& sim, const TimeStepSettings& time, double fram
     }
     if (hooks.after_step) hooks.after_step(sim, state);
     const auto now = clock::now();
-    if (hooks.on_progress && now - last_report >= std::chrono::seconds(1)) {
+    // After the first step (a log shows at once that the run is stepping, and how fast), then
+    // about once a second.
+    if (hooks.on_progress && (out.steps == 1 || now - last_report >= std::chrono::seconds(1))) {
       const double wall = std::chrono::duration<double>(now - start).count();
       const double window = std::chrono::duration<double>(now - last_report).count();
       RunProgress p;
@@ -57,8 +59,8 @@ RunOutcome run_to_end(Simulation& sim, const TimeStepSettings& time, double fram
       p.time = sim.time();
       p.end_time = time.end;
       p.dt = dt;
-      p.steps_per_second = (out.steps - steps_at_report) / window;
-      const double sim_rate = (sim.time() - start_time) / wall;  // simulated seconds per wall second
+      p.steps_per_second = window > 0.0 ? (out.steps - steps_at_report) / window : 0.0;
+      const double sim_rate = wall > 0.0 ? (sim.time() - start_time) / wall : 0.0;  // simulated s per wall s
       p.eta_seconds = sim_rate > 0.0 ? (time.end - sim.time()) / sim_rate : 0.0;
       p.wall_seconds = wall;
       hooks.on_progress(p);

@@ -30,7 +30,7 @@ struct RunLoopState {
 
 struct RunHooks {
   std::function<void(const Simulation&, double dt)> on_frame;      // at t = 0 and k * interval
-  std::function<void(const RunProgress&)> on_progress;              // about once a second
+  std::function<void(const RunProgress&)> on_progress;              // after step 1, then about once a second
   std::function<bool()> stop;                                       // true: stop after the current step
   // After every step, its frame (if any) written: where checkpoints are taken.
   std::function<void(const Simulation&, const RunLoopState&)> after_step;

@@ -96,6 +96,22 @@ TEST_CASE("Usage errors exit 2 with a message naming the problem and write nothi
   }
 }
 
+TEST_CASE("bsmpm run prints its progress line from the first step on, and none with --quiet", "[cli][quiet]") {
+  // The run reports after its first step, whatever the machine's speed, so the line without
+  // --quiet is there however fast the run; with --quiet the same run says nothing of it.
+  const std::string short_run = " --threads 1 --set time.end=0.002 --set output.frame_interval=0.002";
+  const auto loud = bsmpm_with("run " + kScene + " --out " + (scratch() / "loud").string() + short_run);
+  const auto quiet = bsmpm_with("run " + kScene + " --out " + (scratch() / "quiet").string() + short_run + " --quiet");
+  INFO(loud.output);
+  INFO(quiet.output);
+  REQUIRE(loud.status == 0);
+  REQUIRE(quiet.status == 0);
+  CHECK(contains(loud.output, "step 1  t = "));
+  CHECK(contains(loud.output, " steps/s  ETA "));
+  CHECK(!contains(quiet.output, "step 1  t = "));
+  CHECK(!contains(quiet.output, " steps/s  ETA "));
+}
+
 TEST_CASE("bsmpm run refuses an occupied --out and one that cannot be created", "[cli][output]") {
   SECTION("a directory holding other files, without --force") {
     const fs::path dir = scratch() / "occupied";
