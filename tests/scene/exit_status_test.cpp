@@ -132,6 +132,8 @@ TEST_CASE("Exit 2: bad input, each with a message that says what and where", "[c
       {"check " + kTank + " --set foo.bar=1", "--set foo.bar: foo: unknown key"},
       {"run " + kTank + " --out " + (scratch() / "never").string() + " --threads 0", "--threads expects 1 to 1024, got 0"},
       {"check " + kLobovsky + " --set grid.cell_size=0.0001", "of memory; this machine has"},
+      {"metrics " + run.string() + " --stripes 0.05", "--stripes expects two numbers A,B with A < B, got \"0.05\""},
+      {"metrics " + run.string() + " --stripes 0,0.05 --time 1,2 --time-star 1,2", "give --time or --time-star, not both"},
       {"metrics " + run.string() + " --series P_depth50",
        run.string() + "/run.h5: cannot open as an HDF5 file (HDF5: truncated file: "},
       {"render " + (run / "run.h5").string() + " --out " + (scratch() / "frame.png").string(),
