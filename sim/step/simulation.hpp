@@ -39,6 +39,10 @@ struct SolverSettings {
     kProjected,  // the increment projected onto the splines one degree lower (F-bar)
   };
   FluidVolume fluid_volume = FluidVolume::kParticle;
+  // With kSmoothed, what each particle reads back from the control points' fits (method.md
+  // §4): their values and gradients, J_I + g_I . (x_p - xi_I) (false), or their values only,
+  // J_I (true: particles bunched at the knots no longer pass their J through unsmoothed).
+  bool smoothed_values_only = false;
   // Particle shifting (docs/method.md §10): fluid particles drift down the gradient of the
   // grid's volume fraction, D = shifting h^2 per step; 0 = off (the paper).
   double shifting = 0.0;

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "diagnostics/pressure_stripes.hpp"
 #include "test_support.hpp"
 
 using namespace bsmpm;
@@ -28,6 +29,18 @@ namespace {
 //   and a half times that effect.
 constexpr double kArrivalBound = 0.10;                      // |T*_sim - T*_exp|
 constexpr double kPlateauLow = 1.13, kPlateauHigh = 1.37;  // P*_sim / P*_exp
+
+// The pressure along the bed (docs/validation.md, "Pressure stripes"): the stripe number (the
+// RMS of each water particle's pressure minus the mean of its water neighbours within 2 h,
+// over rho g H) of the particles less than 30 mm above the floor, over the frames in
+// T* = 5.0-5.5. Measured 2026-12-03 at h = 10 mm: 0.0486 as shipped (the smoothed J's fitted
+// values and gradients read back), 0.0229 with the values alone (smoothed_volume_readback =
+// "values", method.md §4; not shipped: at 8 mm it lets the wall probes read tension after
+// the first impact, -0.62 P*). Bounds: the measured values plus 25 % (the number moves by
+// 10-20 % from frame to frame); the two bounds apart, so each run shows its readback.
+constexpr double kStripeBoundShipped = 0.061, kStripeBoundValues = 0.029;
+const double kStripeBand = 0.03;  // m above the floor
+const double kStripeFrom = 5.0;   // T*, to the end of the run (5.5)
 
 const double kArrivalLevel = 0.05;                       // P*
 const double kPlateauFrom = 3.5, kPlateauTo = 5.5;       // T*
@@ -54,6 +67,27 @@ double plateau(const Series& s) {
     }
   REQUIRE(n > 10);
   return sum / n;
+}
+
+const double kPressureScale = 1000.0 * 9.81 * 0.3;  // rho g H [Pa]
+
+// Runs scenes/lobovsky_h300.toml with `overrides`, adding to `stripes` the stripe number's
+// sums of every frame from T* = kStripeFrom on (the water's particles in the band).
+test::SceneRun run_with_stripes(const std::vector<std::string>& overrides, StripeSum& stripes) {
+  test::SceneRun run;
+  run.scene = load_scene(test::scene_path("lobovsky_h300.toml"), overrides);
+  run.sim = build_simulation(run.scene);
+  RunHooks hooks;
+  hooks.on_frame = [&](const Simulation& sim, double) {
+    if (sim.time() * std::sqrt(9.81 / 0.3) < kStripeFrom) return;
+    const Particles& ps = sim.particles();
+    std::vector<char> water(ps.size());
+    for (std::size_t p = 0; p < ps.size(); ++p) water[p] = is_fluid(sim.bodies()[ps.body[p]].material);
+    stripes += pressure_stripes(ps.x, ps.pressure, water, StripeBand{-1.0e300, 1.0e300, 0.0, kStripeBand},
+                                2.0 * sim.grid_info().cell_size.x());
+  };
+  run.outcome = run_to_end(*run.sim, run.scene.time, run.scene.frame_interval, hooks);
+  return run;
 }
 
 Series experiment_z30() {
@@ -88,11 +122,12 @@ Series simulated_z30(const Simulation& sim) {
 
 }  // namespace
 
-TEST_CASE("Lobovsky dam break at h = 10 mm: arrival and plateau at z = 30 mm against the experiment",
+TEST_CASE("Lobovsky dam break at h = 10 mm: arrival and plateau at z = 30 mm against the experiment, no stripes along the bed",
           "[physics][lobovsky]") {
   // Up to T* = 5.5, the end of the plateau window (t = T* sqrt(H/g)).
   const double end = kPlateauTo * std::sqrt(0.3 / 9.81);
-  const auto run = test::run_scene("lobovsky_h300.toml", {"grid.cell_size=0.01", "time.end=" + std::to_string(end)});
+  StripeSum stripes;
+  const auto run = run_with_stripes({"grid.cell_size=0.01", "time.end=" + std::to_string(end)}, stripes);
   const Series sim = simulated_z30(*run.sim);
   const Series exp = experiment_z30();
   const double arrival_sim = arrival(sim), arrival_exp = arrival(exp);
@@ -102,6 +137,22 @@ TEST_CASE("Lobovsky dam break at h = 10 mm: arrival and plateau at z = 30 mm aga
   CHECK(std::abs(arrival_sim - arrival_exp) <= kArrivalBound);
   CHECK(plateau_sim / plateau_exp >= kPlateauLow);
   CHECK(plateau_sim / plateau_exp <= kPlateauHigh);
+  const double stripe_number = stripes.rms() / kPressureScale;
+  INFO("stripe number " << stripe_number << " over " << stripes.count << " particle samples");
+  CHECK(stripes.count > 1000);
+  CHECK(stripe_number <= kStripeBoundShipped);
+}
+
+TEST_CASE("Lobovsky dam break at h = 10 mm: reading back the smoothed J's values alone halves the stripes along the bed",
+          "[physics][lobovsky]") {
+  const double end = kPlateauTo * std::sqrt(0.3 / 9.81);
+  StripeSum stripes;
+  run_with_stripes({"grid.cell_size=0.01", "time.end=" + std::to_string(end), "solver.smoothed_volume_readback=values"},
+                   stripes);
+  const double stripe_number = stripes.rms() / kPressureScale;
+  INFO("stripe number " << stripe_number << " over " << stripes.count << " particle samples");
+  CHECK(stripes.count > 1000);
+  CHECK(stripe_number <= kStripeBoundValues);
 }
 
 TEST_CASE("Lobovsky dam break, incompressible, at h = 10 mm: arrival and plateau at z = 30 mm against the experiment",

@@ -119,6 +119,8 @@ const std::vector<BadCase> kCases = {
       {0, "[materials.rubber]\ntype = \"elastic\"\ndensity = 1100.0\nyoungs_modulus = 1e6\n[[bodies]]\nname = \"gate\"\n"
           "material = \"rubber\"\nshape = { type = \"rectangle\", min = [0.3, 0.0], max = [0.31, 0.1] }"}},
      30, 12, "bodies[1].material", "elastic body cannot share a scene with an incompressible fluid"},
+    {"smoothed-volume readback without the smoothed volume", {{0, "[solver]\nsmoothed_volume_readback = \"values\""}},
+     25, 0, "solver.smoothed_volume_readback", "applies only with fluid_volume = \"smoothed\""},
     {"material point off its body",
      {{0, "[[probes]]\nname = \"tip\"\ntype = \"material_point\"\nbody = \"water\"\npoint = [0.3, 0.15]"}},
      28, 9, "probes[1].point", "more than a grid cell away"},

@@ -40,7 +40,7 @@ class StressUpdate {
       gradient_.resize(st.particles.size());
     }
     if (fluid_volume_ == SolverSettings::FluidVolume::kSmoothed) {
-      smoothing_ = VolumeSmoothing<P>(st.grid);
+      smoothing_ = VolumeSmoothing<P>(st.grid, settings.smoothed_values_only);
       gradient_.resize(st.particles.size());
     }
   }

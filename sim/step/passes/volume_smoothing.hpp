@@ -28,8 +28,9 @@ template <int P>
 class VolumeSmoothing {
  public:
   VolumeSmoothing() = default;
-  explicit VolumeSmoothing(const Grid<P>& grid)
-      : moments_(kMoments * grid.node_count(), 0.0), inverse_cell_(grid.cell_size().cwiseInverse()) {}
+  VolumeSmoothing(const Grid<P>& grid, bool values_only)
+      : moments_(kMoments * grid.node_count(), 0.0), inverse_cell_(grid.cell_size().cwiseInverse()),
+        values_only_(values_only) {}
 
   // Adds particle p's share of the moments (its J already updated); called in the scatter's
   // strip order, so the sums do not depend on the threads.
@@ -101,8 +102,14 @@ class VolumeSmoothing {
       }
   }
 
-  // J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)) from the fitted control points.
+  // J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)) from the fitted control points, or with
+  // values only, J_p = sum_I S_Ip J_I. Both reproduce a linear J (sum_I S_Ip xi_I = x_p, walls
+  // included). With the gradients, particles bunched in columns at the knots, two columns in
+  // each control point's support, get back exactly the J they gave: the fit passes any
+  // column-to-column pattern through (the pressure stripes of docs/validation.md). The values
+  // alone average each column with its neighbours (weights 1/4, 1/2, 1/4).
   double fitted_volume_ratio(const StepState<P>& st, std::size_t p) const {
+    if (values_only_) return fitted_value(st, p);
     const int ny = st.grid.ny();
     const double* const gx = st.grid.greville_x();
     const double* const gy = st.grid.greville_y();
@@ -121,6 +128,20 @@ class VolumeSmoothing {
     return J;
   }
 
+  // J_p = sum_I S_Ip J_I.
+  double fitted_value(const StepState<P>& st, std::size_t p) const {
+    const int ny = st.grid.ny();
+    const auto& w = st.weights[p];
+    double J = 0.0;
+    for (int a = 0; a <= P; ++a) {
+      const double* fit = &moments_[kMoments * ((w.i0 + a) * ny + w.j0)];
+      double row = 0.0;
+      for (int c = 0; c <= P; ++c, fit += kMoments) row += w.wy[c] * fit[0];
+      J += w.wx[a] * row;
+    }
+    return J;
+  }
+
   // Zeroes the box for the next step.
   void clear(const NodeBox& b, int ny) {
 #pragma omp parallel for schedule(static) if ((b.i1 - b.i0) * (b.j1 - b.j0) > 4096)
@@ -134,6 +155,7 @@ class VolumeSmoothing {
   static constexpr int kMoments = 9;
   std::vector<double> moments_;  // per control point
   Vec2 inverse_cell_ = Vec2::Zero();
+  bool values_only_ = false;
 };
 
 }  // namespace bsmpm
