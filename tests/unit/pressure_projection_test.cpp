@@ -199,6 +199,39 @@ TEST_CASE("Projected, water falling on the floor stops and the floor takes its m
   CHECK(std::abs(kept) <= 1e-3 * momentum);
   CHECK(floor + kept == Approx(momentum).epsilon(1e-12));  // what the floor takes, the water loses
   CHECK(push > 0.1 * momentum);               // the water presses on the side walls ...
-  CHECK(std::abs(sides) <= 1e-12 * momentum);  // ... equally
+  // ... equally: to the solve's tolerance (1e-10 here), not to round-off, since the incomplete
+  // Cholesky factor's natural ordering is not mirror-symmetric. Measured 1.2e-9 N s/m (1.2e-12
+  // of the momentum; with Jacobi's preconditioner alone round-off, below 1e-12); bound 1e-11.
+  CHECK(std::abs(sides) <= 1e-11 * momentum);
 }
 
+
+TEST_CASE("The assembled pressure matrix is the matrix-free operator", "[pressure]") {
+  // The solve's incomplete Cholesky preconditioner factors A assembled (method.md §12): it must
+  // be the operator the matrix-free product applies, walls and stabilization included.
+  auto box = water_box(24);
+  auto& st = box.st();
+  const DivergenceOperator<2> D = divergence(st);
+  std::vector<std::uint8_t> fixed(st.grid.node_count(), 0);
+  const int ny = st.grid.ny();
+  for (int i = 0; i < st.grid.nx(); ++i) fixed[i * ny] |= kFixedY;  // the floor holds v_y
+  for (int j = 0; j < ny; ++j) fixed[j] |= kFixedX;                 // the left wall holds v_x
+  PressureSystem<2> A;
+  A.resize(D.grid(), st.grid.nx(), st.grid.ny());
+  A.find_unknowns(D, kAllVertices, kAllNodes, 0.1, 0.05 / 1000.0);
+  A.set_weights(st.layers[0], fixed, 0.0);
+  Eigen::SparseMatrix<double, Eigen::RowMajor> M;
+  A.assemble(M);
+  const int n = A.size();
+  REQUIRE(M.rows() == n);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd x(n), Ax(n);
+  for (int k = 0; k < n; ++k) x[k] = u(rng);
+  A.apply(x, Ax);
+  const Eigen::VectorXd Mx = M * x;
+  INFO("|Mx - Ax| = " << (Mx - Ax).norm() << ", |Ax| = " << Ax.norm());
+  CHECK((Mx - Ax).norm() <= 1e-12 * Ax.norm());
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Mt = M.transpose();
+  CHECK((M - Mt).norm() <= 1e-12 * M.norm());
+}

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
 
 #include "step/incompressible/divergence_operator.hpp"
 
@@ -125,6 +126,62 @@ class PressureSystem {
   template <class F>
   void for_each_node(F&& f) const {
     for_each_node_parallel(nodes_, node_ny_, f);
+  }
+
+  // A assembled (row-major, the unknowns' order): row k holds the (2P + 3)^2 vertices within
+  // reach of vertex K through a shared control point, summed per row in a fixed order.
+  void assemble(Eigen::SparseMatrix<double, Eigen::RowMajor>& A) const {
+    constexpr int kSpan = DivergenceOperator<P>::kSpan, kReach = 2 * kSpan - 1;
+    const int n = size(), ny = grid_.ny();
+    std::vector<double> local(std::size_t(n) * kReach * kReach, 0.0);
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (int k = 0; k < n; ++k) {
+      const int K = unknowns_[k], a = K / ny, b = K % ny;
+      double* const row = local.data() + std::size_t(k) * kReach * kReach;
+      D_->for_each_in_row(K, [&](const Vec2& d, int I) {
+        const int i = I / node_ny_, j = I % node_ny_;
+        const Vec2 dw = d.cwiseProduct(inverse_mass_[I]);
+        if (dw.isZero(0.0)) return;
+        for (int e = 0; e < kSpan; ++e) {
+          const int la = i + 1 - e;
+          if (la < 0 || la > grid_.cells_x) continue;
+          for (int f = 0; f < kSpan; ++f) {
+            const int lb = j + 1 - f;
+            if (lb < 0 || lb > grid_.cells_y || position_[la * ny + lb] < 0) continue;
+            row[(la - a + kSpan - 1) * kReach + lb - b + kSpan - 1] += dw.dot(D_->row(la * ny + lb)[e * kSpan + f]);
+          }
+        }
+      });
+      if (stabilization_ > 0.0)
+        for (int axis = 0; axis < 2; ++axis) {
+          const int step = axis == 0 ? ny : 1, bit = axis == 0 ? 1 : 2;
+          for (int c = -1; c <= 1; ++c) {
+            const int C = K + c * step;
+            if (C < 0 || C >= grid_.count() || position_[C] < 0 || !(stencil_[C] & bit)) continue;
+            const double cK = c == 0 ? -2.0 : 1.0;
+            for (int l = -1; l <= 1; ++l) {
+              const int off = c + l;  // L = C + l step = K + (c + l) step
+              const int da = axis == 0 ? off : 0, db = axis == 0 ? 0 : off;
+              row[(da + kSpan - 1) * kReach + db + kSpan - 1] += stabilization_ * cK * (l == 0 ? -2.0 : 1.0);
+            }
+          }
+        }
+    }
+    A.resize(n, n);
+    A.setZero();
+    A.reserve(Eigen::VectorXi::Constant(n, kReach * kReach));
+    for (int k = 0; k < n; ++k) {
+      const int K = unknowns_[k], a = K / ny, b = K % ny;
+      const double* const row = local.data() + std::size_t(k) * kReach * kReach;
+      for (int da = 0; da < kReach; ++da)
+        for (int db = 0; db < kReach; ++db) {
+          const int la = a + da - kSpan + 1, lb = b + db - kSpan + 1;
+          if (la < 0 || la > grid_.cells_x || lb < 0 || lb > grid_.cells_y) continue;
+          const int l = position_[la * ny + lb];
+          if (l >= 0 && row[da * kReach + db] != 0.0) A.insert(k, l) = row[da * kReach + db];
+        }
+    }
+    A.makeCompressed();
   }
 
  private:
