@@ -20,7 +20,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_probes import finish_figure, moving_average, run_labels, runs_argument_parser  # noqa: E402
+from plot_probes import finish_figure, moving_average, run_labels, run_name, runs_argument_parser  # noqa: E402
 from run_csv import read_run_csv  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -109,7 +109,7 @@ def draw(runs, labels, window):
 
 def main():
     args = runs_argument_parser(__doc__, "runs", "gate.png").parse_args()
-    labels = run_labels("plot_gate", args.runs, args.labels, lambda r: os.path.basename(os.path.normpath(r)))
+    labels = run_labels("plot_gate", args.runs, args.labels, run_name)
     draw(args.runs, labels, args.window).savefig(args.output, dpi=110)
     print(f"plot_gate: wrote {args.output}")
 

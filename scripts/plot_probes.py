@@ -67,6 +67,11 @@ def runs_argument_parser(doc, runs, output_default):
     return ap
 
 
+def run_name(run):
+    """A run's directory name, the default label of a run."""
+    return os.path.basename(os.path.normpath(run))
+
+
 def run_labels(program, runs, labels, default):
     """The given --labels, one per run, or default(run) for each run."""
     labels = labels or [default(r) for r in runs]
@@ -170,7 +175,7 @@ def main():
     ap.add_argument("--title", default=None)
     args = ap.parse_args()
     labels = run_labels("plot_probes", args.run_dirs, args.labels,
-                        lambda r: os.path.basename(r.rstrip("/")) if len(args.run_dirs) > 1 else "bsmpm")
+                        lambda r: run_name(r) if len(args.run_dirs) > 1 else "bsmpm")
     fig = draw(args.run_dirs, labels, args.experiment, args.probes, args.window, args.sensor, args.title)
     out = args.output or os.path.join(args.run_dirs[0], "pressure_probes.png")
     fig.savefig(out, dpi=110)

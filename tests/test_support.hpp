@@ -17,8 +17,6 @@
 #include <system_error>
 #include <vector>
 
-#include <catch2/catch.hpp>
-
 #include "scene/scene_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "step/run_loop.hpp"
@@ -85,18 +83,6 @@ inline ProgramResult run_program(const std::string& args, const std::filesystem:
 }
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-// Runs `run(args)` (a ProgramResult) and checks that it stopped on a usage error: exit status
-// 2 and `message` in its output. Returns the output for the caller's further checks.
-template <class Run>
-std::string check_usage_error(Run&& run, const std::string& args, const std::string& message) {
-  INFO("bsmpm " << args);
-  const ProgramResult r = run(args);
-  INFO(r.output);
-  CHECK(r.status == 2);
-  CHECK(contains(r.output, message));
-  return r.output;
-}
 
 // Loads scenes/NAME with overrides, builds and runs it to its end time.
 struct SceneRun {

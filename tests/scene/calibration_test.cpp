@@ -24,11 +24,8 @@ using test::contains;
 
 // The program with BSMPM_CALIBRATION set to `calibration`.
 test::ProgramResult bsmpm_calibrated(const fs::path& calibration, const std::string& args) {
-  const fs::path log = calibration.parent_path().parent_path() / "program.log";
-  const std::string command = "env BSMPM_CALIBRATION='" + calibration.string() + "' " + BSMPM_EXECUTABLE + " " + args +
-                              " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::read_text(log)};
+  return test::run_program(args, calibration.parent_path().parent_path() / "program.log",
+                           "env BSMPM_CALIBRATION='" + calibration.string() + "'");
 }
 
 void write_text(const fs::path& path, const std::string& text) {

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "core/version.hpp"
+#include "bad_input_check.hpp"
 #include "test_support.hpp"
 
 using namespace bsmpm;
@@ -29,8 +30,9 @@ test::ProgramResult bsmpm_with(const std::string& args, const std::string& prefi
 using test::contains;
 
 const std::string kScene = test::scene_path("hydrostatic_tank.toml");
-// A run of a few steps: enough to start writing, fast to finish.
-const std::string kShortRun = " --quiet --set time.end=0.002 --set output.frame_interval=0.002";
+// A run of a few steps: enough to start writing, fast to finish (kShortRun without progress).
+const std::string kFewSteps = " --set time.end=0.002 --set output.frame_interval=0.002";
+const std::string kShortRun = " --quiet" + kFewSteps;
 
 }  // namespace
 
@@ -91,7 +93,7 @@ TEST_CASE("Usage errors exit 2 with a message naming the problem and write nothi
       {"bench " + kScene + " --steps 0", "--steps must be >= 1"},
   };
   for (const Case& c : cases) {
-    test::check_usage_error([](const std::string& args) { return bsmpm_with(args); }, c.args, c.message);
+    test::check_bad_input([](const std::string& args) { return bsmpm_with(args); }, c.args, c.message);
     CHECK(!fs::exists(out));
   }
 }
@@ -99,7 +101,7 @@ TEST_CASE("Usage errors exit 2 with a message naming the problem and write nothi
 TEST_CASE("bsmpm run prints its progress line from the first step on, and none with --quiet", "[cli][quiet]") {
   // The run reports after its first step, whatever the machine's speed, so the line without
   // --quiet is there however fast the run; with --quiet the same run says nothing of it.
-  const std::string short_run = " --threads 1 --set time.end=0.002 --set output.frame_interval=0.002";
+  const std::string short_run = " --threads 1" + kFewSteps;
   const auto loud = bsmpm_with("run " + kScene + " --out " + (scratch() / "loud").string() + short_run);
   const auto quiet = bsmpm_with("run " + kScene + " --out " + (scratch() / "quiet").string() + short_run + " --quiet");
   INFO(loud.output);

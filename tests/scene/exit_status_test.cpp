@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "io/run_summary.hpp"
+#include "bad_input_check.hpp"
 #include "test_support.hpp"
 
 using namespace bsmpm;
@@ -142,8 +143,7 @@ TEST_CASE("Exit 2: bad input, each with a message that says what and where", "[c
        "render writes PNG images; give FILE.png for one image"},
   };
   for (const Case& c : cases) {
-    INFO("bsmpm " << c.args);
-    const std::string output = test::check_usage_error([](const std::string& args) { return program(args); }, c.args,
+    const std::string output = test::check_bad_input([](const std::string& args) { return program(args); }, c.args,
                                                        c.message);
     CHECK(!contains(output, "still writing it"));  // a damaged file is not said to be a run being written
   }

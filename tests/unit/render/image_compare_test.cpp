@@ -30,18 +30,13 @@ Image gradient(int w, int h) {
   return image;
 }
 
-fs::path temp_dir() {
-  static const fs::path dir = test::scratch_dir("compare");
-  return dir;
-}
+const fs::path& temp_dir() { return test::scratch_root("compare"); }
 
 int run_compare(const std::string& args, std::string& output) {
-  const fs::path log = temp_dir() / "compare.log";
-  const int status = std::system((std::string(BSMPM_EXECUTABLE) + " compare " + args + " > " + log.string() + " 2>&1").c_str());
-  std::ifstream in(log);
-  output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  REQUIRE(WIFEXITED(status));
-  return WEXITSTATUS(status);
+  const test::ProgramResult r = test::run_program("compare " + args, temp_dir() / "compare.log");
+  output = r.output;
+  REQUIRE(r.status >= 0);  // it exited (not killed by a signal)
+  return r.status;
 }
 
 }  // namespace
