@@ -71,6 +71,15 @@ double plateau(const Series& s) {
 
 const double kPressureScale = 1000.0 * 9.81 * 0.3;  // rho g H [Pa]
 
+// The stripe number of the summed frames (over rho g H), from enough particle samples, at
+// most `bound`.
+void check_stripe_number(const StripeSum& stripes, double bound) {
+  const double stripe_number = stripes.rms() / kPressureScale;
+  INFO("stripe number " << stripe_number << " over " << stripes.count << " particle samples");
+  CHECK(stripes.count > 1000);
+  CHECK(stripe_number <= bound);
+}
+
 // Runs scenes/lobovsky_h300.toml with `overrides`, adding to `stripes` the stripe number's
 // sums of every frame from T* = kStripeFrom on (the water's particles in the band).
 test::SceneRun run_with_stripes(const std::vector<std::string>& overrides, StripeSum& stripes) {
@@ -137,10 +146,7 @@ TEST_CASE("Lobovsky dam break at h = 10 mm: arrival and plateau at z = 30 mm aga
   CHECK(std::abs(arrival_sim - arrival_exp) <= kArrivalBound);
   CHECK(plateau_sim / plateau_exp >= kPlateauLow);
   CHECK(plateau_sim / plateau_exp <= kPlateauHigh);
-  const double stripe_number = stripes.rms() / kPressureScale;
-  INFO("stripe number " << stripe_number << " over " << stripes.count << " particle samples");
-  CHECK(stripes.count > 1000);
-  CHECK(stripe_number <= kStripeBoundShipped);
+  check_stripe_number(stripes, kStripeBoundShipped);
 }
 
 TEST_CASE("Lobovsky dam break at h = 10 mm: reading back the smoothed J's values alone halves the stripes along the bed",
@@ -149,10 +155,7 @@ TEST_CASE("Lobovsky dam break at h = 10 mm: reading back the smoothed J's values
   StripeSum stripes;
   run_with_stripes({"grid.cell_size=0.01", "time.end=" + std::to_string(end), "solver.smoothed_volume_readback=values"},
                    stripes);
-  const double stripe_number = stripes.rms() / kPressureScale;
-  INFO("stripe number " << stripe_number << " over " << stripes.count << " particle samples");
-  CHECK(stripes.count > 1000);
-  CHECK(stripe_number <= kStripeBoundValues);
+  check_stripe_number(stripes, kStripeBoundValues);
 }
 
 TEST_CASE("Lobovsky dam break, incompressible, at h = 10 mm: arrival and plateau at z = 30 mm against the experiment",
