@@ -114,6 +114,9 @@ const std::vector<BadCase> kCases = {
     {"pressure iterations out of range",
      {{11, "type = \"incompressible_fluid\""}, {13, ""}, {14, ""}, {0, "[solver.pressure]\nmax_iterations = 0"}}, 25,
      18, "solver.pressure.max_iterations", "must be in \\[1, 100000\\]"},
+    {"pressure volume measure unknown",
+     {{11, "type = \"incompressible_fluid\""}, {13, ""}, {14, ""}, {0, "[solver.pressure]\nvolume_measure = \"count\""}},
+     25, 18, "solver.pressure.volume_measure", "must be \"increment\" or \"fill\""},
     {"elastic body beside incompressible water",
      {{11, "type = \"incompressible_fluid\""}, {13, ""}, {14, ""},
       {0, "[materials.rubber]\ntype = \"elastic\"\ndensity = 1100.0\nyoungs_modulus = 1e6\n[[bodies]]\nname = \"gate\"\n"

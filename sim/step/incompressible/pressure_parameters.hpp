@@ -12,11 +12,16 @@
 namespace bsmpm {
 
 struct PressureParameters {
+  // What J_p, the particles' volume ratio in the quadrature (eq. I2) and the volume error
+  // (eq. I3), measures (method.md §12, "The water's volume"): the projected increment
+  // carried from step to step, or the hats' fill by the particles, set each step.
+  enum class VolumeMeasure { kIncrement, kFill };
   double tolerance = 1e-6;         // relative residual |b - A p| / |b| of the solve
   int max_iterations = 500;        // beyond: the run stops as unstable
   double volume_correction = 0.5;  // beta: share of the water's excess volume removed per step (eq. I3)
   double stabilization = 0.05;     // alpha of the checkerboard term S (eq. I4)
   double surface_fraction = 0.1;   // a vertex whose hat is filled to less than this carries p = 0
+  VolumeMeasure volume_measure = VolumeMeasure::kIncrement;
   double density = 1000.0;         // rho0 of the incompressible fluid
   std::array<WallKind, 4> walls{WallKind::kSlip, WallKind::kSlip, WallKind::kSlip, WallKind::kSlip};
 
@@ -53,6 +58,8 @@ struct PressureParameters {
         p.max_iterations = static_cast<int>(t->integer_or("max_iterations", p.max_iterations, 1, 100000));
         p.volume_correction = t->number_or("volume_correction", p.volume_correction, Range::closed(0.0, 1.0));
         p.stabilization = t->number_or("stabilization", p.stabilization, Range::closed(0.0, 10.0));
+        if (t->choice_or("volume_measure", "increment", {"increment", "fill"}) == "fill")
+          p.volume_measure = VolumeMeasure::kFill;
         p.surface_fraction = t->number_or("surface_fraction", p.surface_fraction, Range{Bound::exclusive(0.0), Bound::exclusive(1.0)});
         t->finish();
       }

@@ -24,6 +24,7 @@
 #include "core/format.hpp"
 #include "step/effect.hpp"
 #include "step/incompressible/divergence_operator.hpp"
+#include "step/incompressible/fill_volume.hpp"
 #include "step/incompressible/jacobi_preconditioner.hpp"
 #include "step/incompressible/pressure_parameters.hpp"
 #include "step/incompressible/pressure_system.hpp"
@@ -58,6 +59,7 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
       : parameters_(p), fields_(std::move(fields)), grid_(grid) {
     const int nx = grid.nx(), ny = grid.ny();
     D_.resize(grid_, nx, ny);
+    if (p.volume_measure == PressureParameters::VolumeMeasure::kFill) fill_.resize(grid_);
     system_.resize(grid_, nx, ny);
     pressure_.assign(grid_.count(), 0.0);
     last_.assign(fields_.size(), std::vector<double>(grid_.count(), std::nan("")));
@@ -88,8 +90,10 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
 
   std::string describe() const override {
     return format("pressure projection (incompressible, method.md §12): pressure on the cell corners, CG to %g "
-                  "(at most %d iterations), volume correction %g, stabilization %g, p = 0 below fill %g",
+                  "(at most %d iterations), volume correction %g (J %s), stabilization %g, p = 0 below fill %g",
                   parameters_.tolerance, parameters_.max_iterations, parameters_.volume_correction,
+                  parameters_.volume_measure == PressureParameters::VolumeMeasure::kFill ? "from the hats' fill"
+                                                                                          : "carried",
                   parameters_.stabilization, parameters_.surface_fraction);
   }
 
@@ -120,6 +124,8 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
     const double dt = st.dt;
     auto& ps = st.particles;
 
+    // J from the hats' fill (method.md §12, "The water's volume"), before eq. I2 reads it.
+    if (parameters_.volume_measure == PressureParameters::VolumeMeasure::kFill) fill_.apply(st, field.bodies, vertices);
     // eq. I2: D, the volume fractions, the excess volume and the particles' pressure moments.
     for (int b : field.bodies) {
       st.schedules[b].for_each([&](std::uint32_t p) {
@@ -282,6 +288,7 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
                            Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::NaturalOrdering<int>>> ic_cg_;
   PressureGrid grid_;
   DivergenceOperator<P> D_;
+  FillVolume<P> fill_;                    // only with volume_measure = "fill"
   PressureSystem<P> system_;
   std::vector<std::vector<double>> last_;  // per field: the last solve's p_K, NaN off its unknowns
   std::vector<double> pressure_;         // p_K on every vertex (0 off the unknowns)
