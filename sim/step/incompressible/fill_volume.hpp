@@ -1,5 +1,5 @@
 // The incompressible fluid's volume measured by the particles' packing (docs/method.md §12,
-// "The water's volume", solver.pressure.volume_measure = "fill"): each step, before eq. I2,
+// "What J measures", eq. I5; solver.pressure.volume_measure = "fill"): each step, before eq. I2,
 //
 //   fill_K = sum_p V0_p Q_K(x_p),   r_K = int Q_K / fill_K,   J_p = sum_K Q_K(x_p) r_K,
 //

@@ -13,7 +13,7 @@ namespace bsmpm {
 
 struct PressureParameters {
   // What J_p, the particles' volume ratio in the quadrature (eq. I2) and the volume error
-  // (eq. I3), measures (method.md §12, "The water's volume"): the projected increment
+  // (eq. I3), measures (method.md §12, "What J measures", eq. I5): the projected increment
   // carried from step to step, or the hats' fill by the particles, set each step.
   enum class VolumeMeasure { kIncrement, kFill };
   double tolerance = 1e-6;         // relative residual |b - A p| / |b| of the solve

@@ -124,7 +124,7 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
     const double dt = st.dt;
     auto& ps = st.particles;
 
-    // J from the hats' fill (method.md §12, "The water's volume"), before eq. I2 reads it.
+    // J from the hats' fill (method.md §12, "What J measures", eq. I5), before eq. I2 reads it.
     if (parameters_.volume_measure == PressureParameters::VolumeMeasure::kFill) fill_.apply(st, field.bodies, vertices);
     // eq. I2: D, the volume fractions, the excess volume and the particles' pressure moments.
     for (int b : field.bodies) {
