@@ -11,6 +11,9 @@
 
 namespace bsmpm {
 
+// The conjugate-gradient solve's preconditioner (docs/method.md §12, "The solve").
+enum class PressurePreconditioner { kIncompleteCholesky, kMultigrid };
+
 struct PressureParameters {
   // What J_p, the particles' volume ratio in the quadrature (eq. I2) and the volume error
   // (eq. I3), measures (method.md §12, "What J measures", eq. I5): the projected increment
@@ -22,6 +25,7 @@ struct PressureParameters {
   double stabilization = 0.05;     // alpha of the checkerboard term S (eq. I4)
   double surface_fraction = 0.1;   // a vertex whose hat is filled to less than this carries p = 0
   VolumeMeasure volume_measure = VolumeMeasure::kIncrement;
+  PressurePreconditioner preconditioner = PressurePreconditioner::kIncompleteCholesky;  // of the CG solve
   double density = 1000.0;         // rho0 of the incompressible fluid
   std::array<WallKind, 4> walls{WallKind::kSlip, WallKind::kSlip, WallKind::kSlip, WallKind::kSlip};
 
@@ -61,6 +65,11 @@ struct PressureParameters {
         if (t->choice_or("volume_measure", "increment", {"increment", "fill"}) == "fill")
           p.volume_measure = VolumeMeasure::kFill;
         p.surface_fraction = t->number_or("surface_fraction", p.surface_fraction, Range{Bound::exclusive(0.0), Bound::exclusive(1.0)});
+        const bool ic = p.preconditioner == PressurePreconditioner::kIncompleteCholesky;
+        p.preconditioner = t->choice_or("preconditioner", ic ? "incomplete_cholesky" : "multigrid",
+                                        {"incomplete_cholesky", "multigrid"}) == "multigrid"
+                               ? PressurePreconditioner::kMultigrid
+                               : PressurePreconditioner::kIncompleteCholesky;
         t->finish();
       }
     }

@@ -26,6 +26,7 @@
 #include "step/incompressible/divergence_operator.hpp"
 #include "step/incompressible/fill_volume.hpp"
 #include "step/incompressible/jacobi_preconditioner.hpp"
+#include "step/incompressible/multigrid_preconditioner.hpp"
 #include "step/incompressible/pressure_parameters.hpp"
 #include "step/incompressible/pressure_system.hpp"
 
@@ -90,8 +91,11 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
 
   std::string describe() const override {
     return format("pressure projection (incompressible, method.md §12): pressure on the cell corners, CG to %g "
-                  "(at most %d iterations), volume correction %g (J %s), stabilization %g, p = 0 below fill %g",
-                  parameters_.tolerance, parameters_.max_iterations, parameters_.volume_correction,
+                  "(at most %d iterations, preconditioned by %s), volume correction %g (J %s), stabilization %g, "
+                  "p = 0 below fill %g",
+                  parameters_.tolerance, parameters_.max_iterations,
+                  parameters_.preconditioner == PressurePreconditioner::kMultigrid ? "multigrid" : "incomplete Cholesky",
+                  parameters_.volume_correction,
                   parameters_.volume_measure == PressureParameters::VolumeMeasure::kFill ? "from the hats' fill"
                                                                                           : "carried",
                   parameters_.stabilization, parameters_.surface_fraction);
@@ -179,7 +183,12 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
       // solves of the Lobovsky tank at 8 mm, at impacts) the matrix-free solve with Jacobi's
       // preconditioner starts again from the warm start.
       system_.assemble(assembled_);
-      run(ic_cg_, assembled_);
+      if (parameters_.preconditioner == PressurePreconditioner::kMultigrid) {
+        multigrid_cg_.preconditioner().set_vertices(grid_.nx(), grid_.ny(), unknowns);
+        run(multigrid_cg_, assembled_);
+      } else {
+        run(ic_cg_, assembled_);
+      }
       const int preconditioned = solve.iterations;
       int jacobi = 0;
       if (!converged || !p.allFinite()) {
@@ -190,10 +199,12 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
       if (!converged || !p.allFinite())
         throw NumericalError(format(
             "numerical instability at step %ld (t = %.6g s): the pressure solve of the incompressible fluid did not "
-            "converge: relative residual %.3g after %d conjugate-gradient iterations preconditioned by incomplete "
-            "Cholesky and %d by Jacobi, above solver.pressure.tolerance = %g (%d unknowns); reduce the time step "
+            "converge: relative residual %.3g after %d conjugate-gradient iterations preconditioned by %s "
+            "and %d by Jacobi, above solver.pressure.tolerance = %g (%d unknowns); reduce the time step "
             "(time.cfl) or raise solver.pressure.max_iterations",
-            st.step, st.time, solve.residual, preconditioned, jacobi, parameters_.tolerance, n));
+            st.step, st.time, solve.residual, preconditioned,
+            parameters_.preconditioner == PressurePreconditioner::kMultigrid ? "multigrid" : "incomplete Cholesky",
+            jacobi, parameters_.tolerance, n));
       for (int k = 0; k < n; ++k) pressure_[unknowns[k]] = p[k];
     }
     st.diagnostics.pressure = solve;
@@ -286,6 +297,8 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
   Eigen::SparseMatrix<double, Eigen::RowMajor> assembled_;
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::Lower | Eigen::Upper,
                            Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::NaturalOrdering<int>>> ic_cg_;
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double, Eigen::RowMajor>, Eigen::Lower | Eigen::Upper,
+                           MultigridPreconditioner> multigrid_cg_;
   PressureGrid grid_;
   DivergenceOperator<P> D_;
   FillVolume<P> fill_;                    // only with volume_measure = "fill"
