@@ -11,13 +11,15 @@
 //
 // One V-cycle with a forward Gauss-Seidel sweep before the coarse correction and a backward
 // one after it (the adjoint), and the coarsest level solved exactly (sparse LDL^T), is a
-// symmetric positive definite operator: a preconditioner conjugate gradients accept. Every
-// loop is serial in a fixed order (the same bits for any thread count), and the levels keep
-// their storage from step to step.
+// symmetric positive definite operator: a preconditioner conjugate gradients accept. From
+// x = 0 the forward sweep reads only the strictly lower triangle and leaves the residual
+// -U x (U the strictly upper triangle), so sweep and residual cost one pass over A. Every
+// loop is serial in a fixed order (the same bits for any thread count); the levels are
+// compressed-row arrays that keep their storage from step to step (the Galerkin products
+// by a dense accumulator per row, no allocation once the water stops growing).
 #pragma once
 
 #include <algorithm>
-#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -28,7 +30,6 @@ namespace bsmpm {
 
 class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPreconditioner> {
  public:
-  using Matrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   using Scalar = double;
   using RealScalar = double;
   using StorageIndex = int;
@@ -45,8 +46,8 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     vertices_ = &unknowns;
   }
 
-  // A compressed row-major sparse matrix (or a Ref to one, as ConjugateGradient passes it);
-  // it must outlive the solve, which reads it in place.
+  // A compressed row-major sparse matrix with sorted rows (or a Ref to one, as
+  // ConjugateGradient passes it); it must outlive the solve, which reads it in place.
   template <class M>
   MultigridPreconditioner& analyzePattern(const M&) {
     return *this;
@@ -57,48 +58,51 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
   }
   template <class M>
   MultigridPreconditioner& compute(const M& matrix) {
+    static_assert(M::IsRowMajor, "the multigrid reads A by rows");
     eigen_assert(matrix.isCompressed());
-    fine_.emplace(matrix.rows(), matrix.cols(), matrix.nonZeros(), matrix.outerIndexPtr(), matrix.innerIndexPtr(),
-                  matrix.valuePtr());
-    const FineMatrix& A = *fine_;
+    fine_ = Csr{static_cast<int>(matrix.rows()), matrix.outerIndexPtr(), matrix.innerIndexPtr(), matrix.valuePtr()};
     depth_ = 0;
     int nx = nx_, ny = ny_;
     const std::vector<int>* vertices = vertices_;
     for (;;) {
       if (depth_ == static_cast<int>(levels_.size())) levels_.emplace_back();
       Level& level = levels_[depth_];
-      const int rows = static_cast<int>(depth_ == 0 ? A.rows() : level.A.rows());
-      level.n = rows;
+      const Csr A = matrix_of(depth_);
+      level.n = A.rows;
       level.inverse_diagonal.resize(level.n);
       for (int i = 0; i < level.n; ++i) {
-        const double d = depth_ == 0 ? A.coeff(i, i) : level.A.coeff(i, i);
+        double d = 0.0;
+        for (int e = A.outer[i]; e < A.outer[i + 1]; ++e)
+          if (A.inner[e] == i) d = A.value[e];
         level.inverse_diagonal[i] = d > 0.0 ? 1.0 / d : 0.0;
       }
       level.x.resize(level.n);
       level.r.resize(level.n);
+      level.b.resize(level.n);
       if (level.n <= coarsest_size_ || nx <= 2 || ny <= 2 || !coarsen(level, nx, ny, *vertices)) break;
-      Level& coarse = depth_ + 1 == static_cast<int>(levels_.size()) ? levels_.emplace_back() : levels_[depth_ + 1];
+      if (depth_ + 1 == static_cast<int>(levels_.size())) levels_.emplace_back();
       Level& fine = levels_[depth_];  // emplace_back may have moved it
-      if (depth_ == 0) fine.AP = A * fine.P;
-      else fine.AP = fine.A * fine.P;
-      coarse.A = fine.R * fine.AP;
-      coarse.b.resize(coarse.A.rows());
+      Level& coarse = levels_[depth_ + 1];
+      const int nc = static_cast<int>(fine.coarse_vertices.size());
+      multiply(A, fine.P.view(), nc, fine.AP);               // A P
+      multiply(fine.R.view(), fine.AP.view(), nc, coarse.A);  // P^T (A P)
       vertices = &fine.coarse_vertices;
       nx = nx / 2 + 1;
       ny = ny / 2 + 1;
       ++depth_;
     }
-    Level& last = levels_[depth_];
-    if (depth_ == 0) coarsest_matrix_ = A;
-    else coarsest_matrix_ = last.A;
+    // The coarsest level exactly: a row-major symmetric matrix read as column-major is itself.
+    const Csr last = matrix_of(depth_);
+    coarsest_matrix_ = Eigen::Map<const Eigen::SparseMatrix<double>>(last.rows, last.rows, last.outer[last.rows],
+                                                                      last.outer, last.inner, last.value);
     coarsest_.compute(coarsest_matrix_);
     info_ = coarsest_.info();
     m_isInitialized = true;
     return *this;
   }
 
-  Eigen::Index rows() const { return fine_ ? fine_->rows() : 0; }
-  Eigen::Index cols() const { return rows(); }
+  Eigen::Index rows() const { return fine_.rows; }
+  Eigen::Index cols() const { return fine_.rows; }
   Eigen::ComputationInfo info() const { return info_; }
   int levels() const { return depth_ + 1; }
   int unknowns(int level) const { return levels_[level].n; }
@@ -108,19 +112,67 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
   void _solve_impl(const Rhs& b, Dest& x) const {
     Level& top = levels_[0];
     top.b = b;
-    cycle(0, top.b.data(), top.x.data());
+    cycle(0);
     x = top.x;
   }
 
  private:
+  // A compressed-row view (sorted rows).
+  struct Csr {
+    int rows = 0;
+    const int* outer = nullptr;
+    const int* inner = nullptr;
+    const double* value = nullptr;
+  };
+  struct Storage {
+    std::vector<int> outer, inner;
+    std::vector<double> value;
+    Csr view() const { return Csr{static_cast<int>(outer.size()) - 1, outer.data(), inner.data(), value.data()}; }
+  };
   struct Level {
     int n = 0;
-    Matrix A;                 // this level's operator (level 0's is the caller's)
-    Matrix P, R, AP;          // prolongation to this level from the next, R = P^T, A P
+    Storage A;                         // this level's operator (level 0's is the caller's)
+    Storage P, R, AP;                  // prolongation from the next level, R = P^T, and A P
     std::vector<int> coarse_vertices;  // the next level's unknowns, as vertices of its grid
     std::vector<int> position;         // coarse vertex -> its unknown index, -1 if none
     Eigen::VectorXd inverse_diagonal, x, r, b;
   };
+
+  Csr matrix_of(int l) const { return l == 0 ? fine_ : levels_[l].A.view(); }
+
+  // C = A B (rows of A, columns 0..cols-1 of B), each row gathered in a dense accumulator
+  // in A's and B's order, then written in column order.
+  void multiply(const Csr& A, const Csr& B, int cols, Storage& C) {
+    accumulator_.assign(cols, 0.0);
+    touched_.assign(cols, 0);
+    C.outer.assign(1, 0);
+    C.inner.clear();
+    C.value.clear();
+    std::vector<int>& columns = columns_;
+    for (int i = 0; i < A.rows; ++i) {
+      columns.clear();
+      for (int e = A.outer[i]; e < A.outer[i + 1]; ++e) {
+        const int k = A.inner[e];
+        const double a = A.value[e];
+        for (int f = B.outer[k]; f < B.outer[k + 1]; ++f) {
+          const int j = B.inner[f];
+          if (!touched_[j]) {
+            touched_[j] = 1;
+            columns.push_back(j);
+          }
+          accumulator_[j] += a * B.value[f];
+        }
+      }
+      std::sort(columns.begin(), columns.end());
+      for (int j : columns) {
+        C.inner.push_back(j);
+        C.value.push_back(accumulator_[j]);
+        accumulator_[j] = 0.0;
+        touched_[j] = 0;
+      }
+      C.outer.push_back(static_cast<int>(C.inner.size()));
+    }
+  }
 
   // The next level's unknowns and P, R; false when coarsening would not shrink the level.
   bool coarsen(Level& level, int nx, int ny, const std::vector<int>& vertices) {
@@ -135,9 +187,10 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
       }
     const int nc = static_cast<int>(level.coarse_vertices.size());
     if (4 * nc > 3 * level.n) return false;
-    Matrix& P = level.P;
-    P.resize(level.n, nc);
-    P.reserve(Eigen::VectorXi::Constant(level.n, 4));
+    Storage& P = level.P;
+    P.outer.assign(1, 0);
+    P.inner.clear();
+    P.value.clear();
     for (int k = 0; k < level.n; ++k) {
       const int a = vertices[k] / ny, b = vertices[k] % ny;
       // Bilinear weights: an even vertex is a coarse one, an odd one halfway between two.
@@ -146,64 +199,84 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
       for (int c = c0; c <= c1; ++c)
         for (int d = d0; d <= d1; ++d) {
           const int l = level.position[c * cy + d];
-          if (l >= 0) P.insert(k, l) = wx * wy;
+          if (l >= 0) {
+            P.inner.push_back(l);
+            P.value.push_back(wx * wy);
+          }
         }
+      P.outer.push_back(static_cast<int>(P.inner.size()));
     }
-    P.makeCompressed();
-    level.R = P.transpose();
+    // R = P^T by counting: the rows of P in order, so each row of R comes out sorted.
+    Storage& R = level.R;
+    R.outer.assign(nc + 1, 0);
+    for (int j : P.inner) ++R.outer[j + 1];
+    for (int c = 0; c < nc; ++c) R.outer[c + 1] += R.outer[c];
+    R.inner.resize(P.inner.size());
+    R.value.resize(P.value.size());
+    next_.assign(R.outer.begin(), R.outer.end() - 1);
+    for (int k = 0; k < level.n; ++k)
+      for (int e = P.outer[k]; e < P.outer[k + 1]; ++e) {
+        const int at = next_[P.inner[e]]++;
+        R.inner[at] = k;
+        R.value[at] = P.value[e];
+      }
     return true;
   }
 
-  // Gauss-Seidel in A's row order (forward) or against it.
-  template <class M>
-  static void sweep(const M& A, const Eigen::VectorXd& inverse_diagonal, const double* b, double* x,
-                    bool forward) {
-    const int n = static_cast<int>(A.rows());
-    const int* outer = A.outerIndexPtr();
-    const int* inner = A.innerIndexPtr();
-    const double* value = A.valuePtr();
-    for (int s = 0; s < n; ++s) {
-      const int i = forward ? s : n - 1 - s;
-      double sum = b[i];
-      for (int e = outer[i]; e < outer[i + 1]; ++e)
-        if (inner[e] != i) sum -= value[e] * x[inner[e]];
-      x[i] = sum * inverse_diagonal[i];
-    }
-  }
-
-  void cycle(int l, const double* b, double* x) const {
+  // One V-cycle on level l from x = 0: levels_[l].x = M_l^-1 levels_[l].b.
+  void cycle(int l) const {
     Level& level = levels_[l];
     const int n = level.n;
+    double* const x = level.x.data();
+    const double* const b = level.b.data();
     if (l == depth_) {
-      Eigen::Map<Eigen::VectorXd>(x, n) = coarsest_.solve(Eigen::Map<const Eigen::VectorXd>(b, n));
+      level.x = coarsest_.solve(level.b);
       return;
     }
-    std::fill(x, x + n, 0.0);
-    if (l == 0) smooth_and_correct(*fine_, level, l, b, x);
-    else smooth_and_correct(level.A, level, l, b, x);
-  }
-
-  template <class M>
-  void smooth_and_correct(const M& A, Level& level, int l, const double* b, double* x) const {
-    const int n = level.n;
-    sweep(A, level.inverse_diagonal, b, x, true);
-    Eigen::Map<Eigen::VectorXd> xv(x, n);
-    level.r.noalias() = A * xv;
-    level.r = Eigen::Map<const Eigen::VectorXd>(b, n) - level.r;
+    const Csr A = matrix_of(l);
+    const double* const inverse_diagonal = level.inverse_diagonal.data();
+    // Forward Gauss-Seidel from x = 0 (the strictly lower triangle), then r = b - A x = -U x.
+    for (int i = 0; i < n; ++i) {
+      double sum = b[i];
+      for (int e = A.outer[i]; e < A.outer[i + 1] && A.inner[e] < i; ++e) sum -= A.value[e] * x[A.inner[e]];
+      x[i] = sum * inverse_diagonal[i];
+    }
+    double* const r = level.r.data();
+    for (int i = 0; i < n; ++i) {
+      double sum = 0.0;
+      for (int e = A.outer[i + 1] - 1; e >= A.outer[i] && A.inner[e] > i; --e) sum -= A.value[e] * x[A.inner[e]];
+      r[i] = sum;
+    }
+    // The coarse correction: b_c = R r, x += P x_c.
     Level& coarse = levels_[l + 1];
-    coarse.b.noalias() = level.R * level.r;
-    cycle(l + 1, coarse.b.data(), coarse.x.data());
-    xv.noalias() += level.P * coarse.x;
-    sweep(A, level.inverse_diagonal, b, x, false);
+    const Csr R = level.R.view(), P = level.P.view();
+    for (int c = 0; c < coarse.n; ++c) {
+      double sum = 0.0;
+      for (int e = R.outer[c]; e < R.outer[c + 1]; ++e) sum += R.value[e] * r[R.inner[e]];
+      coarse.b[c] = sum;
+    }
+    cycle(l + 1);
+    const double* const xc = coarse.x.data();
+    for (int i = 0; i < n; ++i)
+      for (int e = P.outer[i]; e < P.outer[i + 1]; ++e) x[i] += P.value[e] * xc[P.inner[e]];
+    // Backward Gauss-Seidel.
+    for (int i = n - 1; i >= 0; --i) {
+      double sum = b[i];
+      for (int e = A.outer[i]; e < A.outer[i + 1]; ++e)
+        if (A.inner[e] != i) sum -= A.value[e] * x[A.inner[e]];
+      x[i] = sum * inverse_diagonal[i];
+    }
   }
 
   int coarsest_size_ = 400;
   int nx_ = 0, ny_ = 0;
   const std::vector<int>* vertices_ = nullptr;
-  using FineMatrix = Eigen::Map<const Matrix>;
-  std::optional<FineMatrix> fine_;
+  Csr fine_;
   mutable std::vector<Level> levels_;
   int depth_ = 0;
+  std::vector<double> accumulator_;
+  std::vector<char> touched_;
+  std::vector<int> columns_, next_;
   Eigen::SparseMatrix<double> coarsest_matrix_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
   Eigen::ComputationInfo info_ = Eigen::Success;
