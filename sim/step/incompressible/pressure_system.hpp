@@ -43,7 +43,7 @@ class PressureSystem {
   std::size_t bytes() const {
     return heap_bytes(position_) + heap_bytes(scratch_) + heap_bytes(second_x_) + heap_bytes(second_y_) +
            heap_bytes(stencil_) + heap_bytes(inverse_mass_) + heap_bytes(force_) + heap_bytes(unknowns_) +
-           heap_bytes(diagonal_);
+           heap_bytes(diagonal_) + heap_bytes(assembly_);
   }
 
   // The unknowns: vertices of `vertices` whose hat is filled to at least `fraction` (volume
@@ -133,7 +133,8 @@ class PressureSystem {
   void assemble(Eigen::SparseMatrix<double, Eigen::RowMajor>& A) const {
     constexpr int kSpan = DivergenceOperator<P>::kSpan, kReach = 2 * kSpan - 1;
     const int n = size(), ny = grid_.ny();
-    std::vector<double> local(std::size_t(n) * kReach * kReach, 0.0);
+    std::vector<double>& local = assembly_;
+    local.assign(std::size_t(n) * kReach * kReach, 0.0);
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (int k = 0; k < n; ++k) {
       const int K = unknowns_[k], a = K / ny, b = K % ny;
@@ -167,21 +168,33 @@ class PressureSystem {
           }
         }
     }
+    // Written in place, compressed (rows come out sorted since the unknowns are numbered in
+    // vertex order), into storage reused from step to step.
     A.resize(n, n);
-    A.setZero();
-    A.reserve(Eigen::VectorXi::Constant(n, kReach * kReach));
+    A.data().resize(std::size_t(n) * kReach * kReach);  // a bound, trimmed below
+    int* const outer = A.outerIndexPtr();
+    int* const inner = A.innerIndexPtr();
+    double* const value = A.valuePtr();
+    int at = 0;
+    outer[0] = 0;
     for (int k = 0; k < n; ++k) {
       const int K = unknowns_[k], a = K / ny, b = K % ny;
       const double* const row = local.data() + std::size_t(k) * kReach * kReach;
-      for (int da = 0; da < kReach; ++da)
+      for (int da = 0; da < kReach; ++da) {
+        const int la = a + da - kSpan + 1;
+        if (la < 0 || la > grid_.cells_x) continue;
         for (int db = 0; db < kReach; ++db) {
-          const int la = a + da - kSpan + 1, lb = b + db - kSpan + 1;
-          if (la < 0 || la > grid_.cells_x || lb < 0 || lb > grid_.cells_y) continue;
+          const int lb = b + db - kSpan + 1;
+          if (lb < 0 || lb > grid_.cells_y) continue;
           const int l = position_[la * ny + lb];
-          if (l >= 0 && row[da * kReach + db] != 0.0) A.insert(k, l) = row[da * kReach + db];
+          if (l < 0 || row[da * kReach + db] == 0.0) continue;
+          inner[at] = l;
+          value[at++] = row[da * kReach + db];
         }
+      }
+      outer[k + 1] = at;
     }
-    A.makeCompressed();
+    A.data().resize(at);
   }
 
  private:
@@ -238,6 +251,7 @@ class PressureSystem {
   std::vector<Vec2> inverse_mass_;
   std::vector<double> diagonal_;
   mutable std::vector<double> scratch_, second_x_, second_y_;
+  mutable std::vector<double> assembly_;  // assemble's rows, (2P + 3)^2 per unknown
   mutable std::vector<Vec2> force_;
 };
 
