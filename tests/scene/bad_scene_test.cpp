@@ -117,6 +117,9 @@ const std::vector<BadCase> kCases = {
     {"pressure volume measure unknown",
      {{11, "type = \"incompressible_fluid\""}, {13, ""}, {14, ""}, {0, "[solver.pressure]\nvolume_measure = \"count\""}},
      25, 18, "solver.pressure.volume_measure", "must be \"increment\" or \"fill\""},
+    {"unknown pressure preconditioner",
+     {{11, "type = \"incompressible_fluid\""}, {13, ""}, {14, ""}, {0, "[solver.pressure]\npreconditioner = \"ilu\""}},
+     25, 18, "solver.pressure.preconditioner", "must be \"incomplete_cholesky\" or \"multigrid\""},
     {"elastic body beside incompressible water",
      {{11, "type = \"incompressible_fluid\""}, {13, ""}, {14, ""},
       {0, "[materials.rubber]\ntype = \"elastic\"\ndensity = 1100.0\nyoungs_modulus = 1e6\n[[bodies]]\nname = \"gate\"\n"

@@ -95,6 +95,15 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     const Csr last = matrix_of(depth_);
     coarsest_matrix_ = Eigen::Map<const Eigen::SparseMatrix<double>>(last.rows, last.rows, last.outer[last.rows],
                                                                       last.outer, last.inner, last.value);
+    // A coarse unknown whose finer rows are all empty (water whose control points the walls or
+    // the mass cut-off all hold) has an empty row: a relative shift of 1e-10 keeps its pivot
+    // finite (measured on the jet on a wall: without it, 17 solves in 670 fell back to Jacobi,
+    // one with a NaN; with it none).
+    double largest = 0.0;
+    for (int i = 0; i < last.rows; ++i)
+      for (int e = last.outer[i]; e < last.outer[i + 1]; ++e)
+        if (last.inner[e] == i) largest = std::max(largest, last.value[e]);
+    coarsest_.setShift(1e-10 * largest);
     coarsest_.compute(coarsest_matrix_);
     info_ = coarsest_.info();
     m_isInitialized = true;

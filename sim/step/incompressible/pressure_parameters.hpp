@@ -25,7 +25,9 @@ struct PressureParameters {
   double stabilization = 0.05;     // alpha of the checkerboard term S (eq. I4)
   double surface_fraction = 0.1;   // a vertex whose hat is filled to less than this carries p = 0
   VolumeMeasure volume_measure = VolumeMeasure::kIncrement;
-  PressurePreconditioner preconditioner = PressurePreconditioner::kIncompleteCholesky;  // of the CG solve
+  // Of the CG solve; incomplete Cholesky by default: multigrid's solution differs within the
+  // tolerance, and the flows amplify that beyond it (docs/method.md §12, "The solve").
+  PressurePreconditioner preconditioner = PressurePreconditioner::kIncompleteCholesky;
   double density = 1000.0;         // rho0 of the incompressible fluid
   std::array<WallKind, 4> walls{WallKind::kSlip, WallKind::kSlip, WallKind::kSlip, WallKind::kSlip};
 
