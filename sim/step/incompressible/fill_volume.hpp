@@ -72,10 +72,7 @@ class FillVolume {
 #pragma omp parallel for schedule(static)
       for (long p = static_cast<long>(body.begin); p < static_cast<long>(body.end); ++p) {
         const auto& w = st.weights[p];
-        const PressureGrid::Hats q = grid_.at(ps.x[p], w.i0, w.j0);
-        const int K = w.i0 * ny + w.j0;
-        ps.J[p] = q.qx[0] * (q.qy[0] * ratio_[K] + q.qy[1] * ratio_[K + 1]) +
-                  q.qx[1] * (q.qy[0] * ratio_[K + ny] + q.qy[1] * ratio_[K + ny + 1]);
+        ps.J[p] = grid_.interpolate(grid_.at(ps.x[p], w.i0, w.j0), ratio_, grid_.index(w.i0, w.j0));
       }
     }
     for (int a = vertices.i0; a < vertices.i1; ++a)

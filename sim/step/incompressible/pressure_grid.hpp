@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "core/types.hpp"
 #include "grid/grid.hpp"
@@ -36,6 +37,11 @@ struct PressureGrid {
     const double tx = (x.x() - origin.x()) / cell_size.x() - cell_x;
     const double ty = (x.y() - origin.y()) / cell_size.y() - cell_y;
     return {{1.0 - tx, tx}, {1.0 - ty, ty}};
+  }
+  // sum_K Q_K(x) f_K over the four corners of the cell whose first corner is K (hats `q`).
+  double interpolate(const Hats& q, const std::vector<double>& f, int K) const {
+    const int vy = ny();
+    return q.qx[0] * (q.qy[0] * f[K] + q.qy[1] * f[K + 1]) + q.qx[1] * (q.qy[0] * f[K + vy] + q.qy[1] * f[K + vy + 1]);
   }
   // The integral of Q_K over the domain: h_x h_y, halved per axis on a wall.
   double hat_integral(int a, int b) const {

@@ -246,16 +246,12 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
       for (int i = nodes.i0; i < nodes.i1; ++i) hold(i * ny + ny - 1, kTop, i, i == 0 || i == nx - 1);
 
     // The particles' pressure, p(x_p) = sum_K Q_K(x_p) p_K, for the stress output and probes.
-    const int vy = grid_.ny();
     for (int b : field.bodies) {
       const Body& body = st.bodies[b];
 #pragma omp parallel for schedule(static)
       for (long p = static_cast<long>(body.begin); p < static_cast<long>(body.end); ++p) {
         const auto& w = st.weights[p];
-        const PressureGrid::Hats q = grid_.at(ps.x[p], w.i0, w.j0);
-        const int K = w.i0 * vy + w.j0;
-        ps.pressure[p] = q.qx[0] * (q.qy[0] * pressure_[K] + q.qy[1] * pressure_[K + 1]) +
-                         q.qx[1] * (q.qy[0] * pressure_[K + vy] + q.qy[1] * pressure_[K + vy + 1]);
+        ps.pressure[p] = grid_.interpolate(grid_.at(ps.x[p], w.i0, w.j0), pressure_, grid_.index(w.i0, w.j0));
       }
     }
     D_.clear(vertices);
