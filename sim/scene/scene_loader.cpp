@@ -237,6 +237,14 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
         solver->fail("smoothed_volume_readback", "applies only with fluid_volume = \"smoothed\"");
       s.solver.smoothed_values_only = solver->choice("smoothed_volume_readback", {"linear", "values"}) == "values";
     }
+    if (solver->has("smoothed_volume_basis")) {
+      if (s.solver.fluid_volume != SolverSettings::FluidVolume::kSmoothed)
+        solver->fail("smoothed_volume_basis", "applies only with fluid_volume = \"smoothed\"");
+      const std::string basis = solver->choice("smoothed_volume_basis", {"velocity", "linear", "linear_patches"});
+      s.solver.smoothed_volume_basis = basis == "velocity" ? SolverSettings::SmoothedVolumeBasis::kVelocity
+                                       : basis == "linear" ? SolverSettings::SmoothedVolumeBasis::kLinear
+                                                           : SolverSettings::SmoothedVolumeBasis::kLinearPatches;
+    }
     s.solver.shifting = solver->number_or("particle_shifting", 0.0, Range::closed(0.0, 0.5));
     const Vec2 range = solver->vec2_or("density_range", Vec2(s.solver.min_density_ratio, s.solver.max_density_ratio),
                                        Range::positive());

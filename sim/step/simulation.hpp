@@ -43,6 +43,12 @@ struct SolverSettings {
   // §4): their values and gradients, J_I + g_I . (x_p - xi_I) (false), or their values only,
   // J_I (true: particles bunched at the knots no longer pass their J through unsmoothed).
   bool smoothed_values_only = false;
+  // With kSmoothed, where the fit is made (method.md §4): at the velocity's control points with
+  // their splines as weights, or at the knots (the linear splines' control points) with the
+  // hats as weights or with weight 1 over each knot's four cells (kLinearPatches: a particle
+  // adds to one cell's moments, carried to the knots on the grid).
+  enum class SmoothedVolumeBasis { kVelocity, kLinear, kLinearPatches };
+  SmoothedVolumeBasis smoothed_volume_basis = SmoothedVolumeBasis::kVelocity;
   // Particle shifting (docs/method.md §10): fluid particles drift down the gradient of the
   // grid's volume fraction, D = shifting h^2 per step; 0 = off (the paper).
   double shifting = 0.0;

@@ -14,6 +14,7 @@
 #include "core/format.hpp"
 #include "step/passes/dilatation_projection.hpp"
 #include "step/passes/grid_to_particle.hpp"
+#include "step/passes/linear_volume_smoothing.hpp"
 #include "step/passes/volume_smoothing.hpp"
 #include "step/step_state.hpp"
 
@@ -40,7 +41,12 @@ class StressUpdate {
       gradient_.resize(st.particles.size());
     }
     if (fluid_volume_ == SolverSettings::FluidVolume::kSmoothed) {
-      smoothing_ = VolumeSmoothing<P>(st.grid, settings.smoothed_values_only);
+      using Basis = SolverSettings::SmoothedVolumeBasis;
+      linear_fit_ = settings.smoothed_volume_basis != Basis::kVelocity && P > 1;
+      if (linear_fit_)
+        linear_smoothing_ = LinearVolumeSmoothing<P>(st.grid, settings.smoothed_values_only,
+                                                     settings.smoothed_volume_basis == Basis::kLinearPatches);
+      else smoothing_ = VolumeSmoothing<P>(st.grid, settings.smoothed_values_only);
       gradient_.resize(st.particles.size());
     }
   }
@@ -89,7 +95,7 @@ class StressUpdate {
   }
 
   std::size_t particle_bytes() const { return heap_bytes(gradient_) + heap_bytes(increment_); }
-  std::size_t grid_bytes() const { return smoothing_.bytes() + projection_.bytes(); }
+  std::size_t grid_bytes() const { return smoothing_.bytes() + linear_smoothing_.bytes() + projection_.bytes(); }
 
  private:
   // One body's particles [begin, end) and the remapped velocities of its grid field.
@@ -132,25 +138,36 @@ class StressUpdate {
       // the particle's share of the least-squares moments; then the fit at the control points.
       // The pass below reads the fitted J back before it enters the equation of state.
       const PhaseScope timed(st.timer, StepPhase::kSmoothing);
-      st.schedules[body.index].for_each([&](std::uint32_t p) {
-        const Mat2 L = velocity_gradient<P>(st.weights[p], body.velocity, ny);
-        gradient_[p] = L;
-        ps.J[p] *= (Mat2::Identity() + dt * L).determinant();
-        smoothing_.add_moments(st, p);
-      });
-      smoothing_.fit(st.layers[st.bodies[body.index].layer].active, ny);
+      auto scatter = [&](auto& smoothing) {
+        st.schedules[body.index].for_each([&](std::uint32_t p) {
+          const Mat2 L = velocity_gradient<P>(st.weights[p], body.velocity, ny);
+          gradient_[p] = L;
+          ps.J[p] *= (Mat2::Identity() + dt * L).determinant();
+          smoothing.add_moments(st, p);
+        });
+      };
+      if (linear_fit_) {
+        linear_smoothing_.begin(st.layers[st.bodies[body.index].layer].active);
+        scatter(linear_smoothing_);
+        linear_smoothing_.fit();
+      } else {
+        scatter(smoothing_);
+        smoothing_.fit(st.layers[st.bodies[body.index].layer].active, ny);
+      }
     }
     // With a tension cut-off, water does not stretch past the J at which it reaches it
     // (method.md §4): a particle there keeps its volume, as water in a thinning sheet does.
     const std::optional<double> j_cut = mat.largest_volume_ratio();
-    auto run = [&](auto viscous) {
+    // J after the step's volume update: read back from the fit, or as updated. One loop per
+    // readback, so that each reads its J without a branch per particle.
+    auto run = [&](auto viscous, auto&& updated_volume_ratio) {
 #pragma omp parallel for schedule(static) reduction(max : body_speed) reduction(|| : body_invalid)
       for (long p = body.begin; p < body.end; ++p) {
         Mat2 L;
         double J;
         if (smooth) {
           L = gradient_[p];
-          J = fitted ? smoothing_.fitted_volume_ratio(st, p) : ps.J[p];
+          J = updated_volume_ratio(p);
           ps.J[p] = J;
         } else {
           L = velocity_gradient<P>(st.weights[p], body.velocity, ny);
@@ -167,9 +184,15 @@ class StressUpdate {
       }
     };
     // Viscosity only when mu > 0: the inviscid loop has no deviatoric term at all.
-    if (mat.viscosity > 0.0) run(std::true_type{});
-    else run(std::false_type{});
-    if (fitted) smoothing_.clear(st.layers[st.bodies[body.index].layer].active, ny);
+    auto with_readback = [&](auto viscous) {
+      if (fitted && linear_fit_) run(viscous, [&](long p) { return linear_smoothing_.fitted_volume_ratio(st, p); });
+      else if (fitted) run(viscous, [&](long p) { return smoothing_.fitted_volume_ratio(st, p); });
+      else run(viscous, [&](long p) { return ps.J[p]; });
+    };
+    if (mat.viscosity > 0.0) with_readback(std::true_type{});
+    else with_readback(std::false_type{});
+    if (fitted && linear_fit_) linear_smoothing_.clear();
+    else if (fitted) smoothing_.clear(st.layers[st.bodies[body.index].layer].active, ny);
     return {body_speed, body_invalid};
   }
 
@@ -240,7 +263,9 @@ class StressUpdate {
   SolverSettings::FluidVolume fluid_volume_ = SolverSettings::FluidVolume::kParticle;
   double j_min_ = 0.0, j_max_ = 0.0;  // the density range as volume ratios J = rho0 / rho
   double min_density_ratio_ = 0.0, max_density_ratio_ = 0.0;
-  VolumeSmoothing<P> smoothing_;          // only with FluidVolume::kSmoothed
+  VolumeSmoothing<P> smoothing_;          // only with FluidVolume::kSmoothed on the velocity's splines
+  LinearVolumeSmoothing<P> linear_smoothing_;  // only with FluidVolume::kSmoothed on the hats
+  bool linear_fit_ = false;
   DilatationProjection<P> projection_;    // only with FluidVolume::kProjected
   std::vector<Mat2> gradient_;            // L_p, kept from the smoothing's pass for the stress pass
   std::vector<double> increment_;         // the projected volumetric increments

@@ -20,6 +20,7 @@
 #include <array>
 #include <vector>
 
+#include "step/passes/volume_fit.hpp"
 #include "step/step_state.hpp"
 
 namespace bsmpm {
@@ -72,34 +73,11 @@ class VolumeSmoothing {
     }
   }
 
-  // Each control point's normal equations A (J_I, g_I h) = r over the box, solved by
-  // cofactors; the fit replaces the first three moments.
+  // Each control point's fit over the box (volume_fit.hpp).
   void fit(const NodeBox& b, int ny) {
 #pragma omp parallel for schedule(static)
     for (int i = b.i0; i < b.i1; ++i)
-      for (int j = b.j0; j < b.j1; ++j) {
-        double* mom = &moments_[kMoments * (i * ny + j)];
-        const double a00 = mom[0];
-        if (a00 <= 0.0) continue;
-        const double a01 = mom[1], a02 = mom[2], a11 = mom[3], a12 = mom[4], a22 = mom[5];
-        const double r0 = mom[6], r1 = mom[7], r2 = mom[8];
-        // Spread of the particles about their centroid (in cells^2): a thin film cannot
-        // carry a gradient across itself.
-        const double mx = a01 / a00, my = a02 / a00;
-        const double cxx = a11 / a00 - mx * mx, cxy = a12 / a00 - mx * my, cyy = a22 / a00 - my * my;
-        double fit0 = r0 / a00, fit1 = 0.0, fit2 = 0.0;
-        if (cxx * cyy - cxy * cxy > 1e-3) {
-          const double c00 = a11 * a22 - a12 * a12, c01 = a02 * a12 - a01 * a22, c02 = a01 * a12 - a02 * a11;
-          const double c11 = a00 * a22 - a02 * a02, c12 = a01 * a02 - a00 * a12, c22 = a00 * a11 - a01 * a01;
-          const double inv_det = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02);
-          fit0 = (c00 * r0 + c01 * r1 + c02 * r2) * inv_det;
-          fit1 = (c01 * r0 + c11 * r1 + c12 * r2) * inv_det;
-          fit2 = (c02 * r0 + c12 * r1 + c22 * r2) * inv_det;
-        }
-        mom[0] = fit0;
-        mom[1] = fit1;
-        mom[2] = fit2;
-      }
+      for (int j = b.j0; j < b.j1; ++j) fit_volume_moments(&moments_[kMoments * (i * ny + j)]);
   }
 
   // J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)) from the fitted control points, or with
