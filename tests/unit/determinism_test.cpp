@@ -55,6 +55,16 @@ TEST_CASE("Results are bit-identical for 1, 2 and 3 threads", "[determinism]") {
   check_thread_counts_agree("martin_moyce.toml", 8000, 300, 2e-5);
 }
 
+TEST_CASE("The J fits on the knots are bit-identical for 1, 2 and 3 threads", "[determinism]") {
+  // solver.smoothed_volume_basis (method.md §4): the hats' and the cells' moments are
+  // scattered in the strips' order, the cells carried to the knots row by row.
+  for (const char* basis : {"\"linear\"", "\"linear_patches\""}) {
+    INFO("smoothed_volume_basis = " << basis);
+    check_thread_counts_agree("martin_moyce.toml", 8000, 100, 2e-5,
+                              {std::string("solver.smoothed_volume_basis=") + basis});
+  }
+}
+
 TEST_CASE("The incompressible fluid's results are bit-identical for 1, 2 and 3 threads", "[determinism]") {
   // The pressure projection (method.md §12) scatters D in the strips' order, gathers D^T per
   // control point and D per vertex, and Eigen's conjugate gradients sum their dot products
