@@ -11,7 +11,19 @@
 //
 // One V-cycle with a forward Gauss-Seidel sweep before the coarse correction and a backward
 // one after it (the adjoint), and the coarsest level solved exactly (sparse LDL^T), is a
-// symmetric positive definite operator: a preconditioner conjugate gradients accept. From
+// symmetric positive definite operator: a preconditioner conjugate gradients accept.
+//
+// Thin water (set_thin_rows): a sheet or a ligament one to three vertices thick, and a drop
+// of spray, carries an alternating pressure mode A barely sees (the vertex checkerboard the
+// stabilization does not reach, as it needs three unknowns in a line), which neither the
+// point smoother (it is not diagonally dominant) nor the bilinear coarse space reduces: after
+// the Lobovsky impact the V-cycle's CG took 27-47 iterations where these were the slowest
+// modes. The fine level's unknowns whose rows are short (at most three grid lines of a full
+// row's) are therefore solved together exactly (sparse LDL^T of A restricted to them) after
+// the forward sweep and before the backward one: a block of the symmetric smoother, so the
+// cycle stays symmetric positive definite.
+//
+// From
 // x = 0 the forward sweep reads only the strictly lower triangle and leaves the residual
 // -U x (U the strictly upper triangle), so sweep and residual cost one pass over A. Every
 // loop is serial in a fixed order (the same bits for any thread count); the levels are
@@ -20,6 +32,7 @@
 #pragma once
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -37,6 +50,11 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
 
   // A level of at most this many unknowns is solved exactly (default 400).
   void set_coarsest(int unknowns) { coarsest_size_ = unknowns; }
+
+  // The fine level's unknowns whose rows hold at most this many entries are thin (solved
+  // together exactly in the smoother); 0: none.
+  void set_thin_rows(int entries) { thin_rows_ = entries; }
+  int thin_unknowns() const { return levels_.empty() ? 0 : static_cast<int>(levels_[0].thin.size()); }
 
   // The unknowns' vertices K = a * ny + b on the nx x ny vertex grid, in A's order; set
   // before compute().
@@ -76,10 +94,12 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
           if (A.inner[e] == i) d = A.value[e];
         level.inverse_diagonal[i] = d > 0.0 ? 1.0 / d : 0.0;
       }
+      if (depth_ == 0) set_thin(level, A);
       level.x.resize(level.n);
       level.r.resize(level.n);
       level.b.resize(level.n);
-      if (level.n <= coarsest_size_ || nx <= 2 || ny <= 2 || !coarsen(level, nx, ny, *vertices)) break;
+      const bool stop = level.n <= coarsest_size_ || nx <= 2 || ny <= 2 || !coarsen(level, nx, ny, *vertices);
+      if (stop) break;
       if (depth_ + 1 == static_cast<int>(levels_.size())) levels_.emplace_back();
       Level& fine = levels_[depth_];  // emplace_back may have moved it
       Level& coarse = levels_[depth_ + 1];
@@ -145,6 +165,11 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     std::vector<int> coarse_vertices;  // the next level's unknowns, as vertices of its grid
     std::vector<int> position;         // coarse vertex -> its unknown index, -1 if none
     Eigen::VectorXd inverse_diagonal, x, r, b;
+    // The thin unknowns (level 0): their indices, A restricted to them and its factor.
+    std::vector<int> thin;
+    Eigen::SparseMatrix<double> thin_matrix;
+    std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> thin_factor;
+    Eigen::VectorXd thin_r, thin_x;
   };
 
   Csr matrix_of(int l) const { return l == 0 ? fine_ : levels_[l].A.view(); }
@@ -232,6 +257,59 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     return true;
   }
 
+  // The thin unknowns of `level` (rows of at most thin_rows_ entries) and their block's factor.
+  void set_thin(Level& level, const Csr& A) {
+    level.thin.clear();
+    for (int i = 0; i < level.n; ++i)
+      if (A.outer[i + 1] - A.outer[i] <= thin_rows_) level.thin.push_back(i);
+    const int m = static_cast<int>(level.thin.size());
+    if (m == 0) return;
+    thin_position_.assign(level.n, -1);
+    for (int t = 0; t < m; ++t) thin_position_[level.thin[t]] = t;
+    // Column-major with sorted columns: the rows of a symmetric block, read as its columns.
+    Eigen::SparseMatrix<double>& B = level.thin_matrix;
+    B.resize(m, m);
+    B.resizeNonZeros(0);
+    thin_outer_.assign(1, 0);
+    thin_inner_.clear();
+    thin_value_.clear();
+    double largest = 0.0;
+    for (int t = 0; t < m; ++t) {
+      const int i = level.thin[t];
+      for (int e = A.outer[i]; e < A.outer[i + 1]; ++e) {
+        const int u = thin_position_[A.inner[e]];
+        if (u < 0) continue;
+        thin_inner_.push_back(u);
+        thin_value_.push_back(A.value[e]);
+        if (u == t) largest = std::max(largest, A.value[e]);
+      }
+      thin_outer_.push_back(static_cast<int>(thin_inner_.size()));
+    }
+    B = Eigen::Map<const Eigen::SparseMatrix<double>>(m, m, thin_outer_.back(), thin_outer_.data(), thin_inner_.data(),
+                                                      thin_value_.data());
+    if (!level.thin_factor) level.thin_factor = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
+    // A drop's block can be singular but for round-off (its constant or alternating mode): the
+    // coarsest level's relative shift keeps the pivots finite.
+    level.thin_factor->setShift(1e-10 * largest);
+    level.thin_factor->compute(B);
+    level.thin_r.resize(m);
+  }
+
+  // The thin block of the smoother, given thin_r = (b - A x) on the thin unknowns: x_T +=
+  // A_TT^-1 thin_r; and, when r is given, r -= A x_T's change on every row (A symmetric:
+  // row t of A scattered).
+  void solve_thin(Level& level, const Csr& A, double* x, double* r) const {
+    level.thin_x = level.thin_factor->solve(level.thin_r);
+    const int m = static_cast<int>(level.thin.size());
+    for (int t = 0; t < m; ++t) {
+      const int i = level.thin[t];
+      const double dx = level.thin_x[t];
+      x[i] += dx;
+      if (r)
+        for (int e = A.outer[i]; e < A.outer[i + 1]; ++e) r[A.inner[e]] -= A.value[e] * dx;
+    }
+  }
+
   // One V-cycle on level l from x = 0: levels_[l].x = M_l^-1 levels_[l].b.
   void cycle(int l) const {
     Level& level = levels_[l];
@@ -256,6 +334,10 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
       for (int e = A.outer[i + 1] - 1; e >= A.outer[i] && A.inner[e] > i; --e) sum -= A.value[e] * x[A.inner[e]];
       r[i] = sum;
     }
+    if (!level.thin.empty()) {  // the thin block: x_T += A_TT^-1 r_T, r updated
+      for (std::size_t t = 0; t < level.thin.size(); ++t) level.thin_r[t] = r[level.thin[t]];
+      solve_thin(level, A, x, r);
+    }
     // The coarse correction: b_c = R r, x += P x_c.
     Level& coarse = levels_[l + 1];
     const Csr R = level.R.view(), P = level.P.view();
@@ -268,6 +350,15 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     const double* const xc = coarse.x.data();
     for (int i = 0; i < n; ++i)
       for (int e = P.outer[i]; e < P.outer[i + 1]; ++e) x[i] += P.value[e] * xc[P.inner[e]];
+    if (!level.thin.empty()) {  // the thin block again (the adjoint order): x_T += A_TT^-1 (b - A x)_T
+      for (std::size_t t = 0; t < level.thin.size(); ++t) {
+        const int i = level.thin[t];
+        double sum = b[i];
+        for (int e = A.outer[i]; e < A.outer[i + 1]; ++e) sum -= A.value[e] * x[A.inner[e]];
+        level.thin_r[t] = sum;
+      }
+      solve_thin(level, A, x, nullptr);
+    }
     // Backward Gauss-Seidel.
     for (int i = n - 1; i >= 0; --i) {
       double sum = b[i];
@@ -278,6 +369,9 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
   }
 
   int coarsest_size_ = 400;
+  int thin_rows_ = 0;
+  std::vector<int> thin_position_, thin_outer_, thin_inner_;
+  std::vector<double> thin_value_;
   int nx_ = 0, ny_ = 0;
   const std::vector<int>* vertices_ = nullptr;
   Csr fine_;

@@ -87,6 +87,10 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
       wall(i, ny - 1, kTop, kFixedY);
     }
     fixed_ = base_fixed_;
+    // The multigrid's thin unknowns (method.md §12, "The solve"): rows that reach at most three
+    // of the 2P + 3 vertex lines a full row reaches, i.e. water at most about three vertices thick.
+    constexpr int kReach = 2 * DivergenceOperator<P>::kSpan - 1;
+    multigrid_cg_.preconditioner().set_thin_rows(3 * kReach);
   }
 
   std::string describe() const override {

@@ -12,6 +12,7 @@
 // vertex in a fixed order, so that any thread count gives the same bits.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +32,7 @@ class PressureSystem {
  public:
   void resize(const PressureGrid& grid, int node_nx, int node_ny) {
     grid_ = grid;
+    node_nx_ = node_nx;
     node_ny_ = node_ny;
     position_.assign(grid.count(), -1);
     scratch_.assign(grid.count(), 0.0);
@@ -139,20 +141,29 @@ class PressureSystem {
     for (int k = 0; k < n; ++k) {
       const int K = unknowns_[k], a = K / ny, b = K % ny;
       double* const row = local.data() + std::size_t(k) * kReach * kReach;
-      D_->for_each_in_row(K, [&](const Vec2& d, int I) {
-        const int i = I / node_ny_, j = I % node_ny_;
-        const Vec2 dw = d.cwiseProduct(inverse_mass_[I]);
-        if (dw.isZero(0.0)) return;
-        for (int e = 0; e < kSpan; ++e) {
-          const int la = i + 1 - e;
-          if (la < 0 || la > grid_.cells_x) continue;
-          for (int f = 0; f < kSpan; ++f) {
-            const int lb = j + 1 - f;
-            if (lb < 0 || lb > grid_.cells_y || position_[la * ny + lb] < 0) continue;
-            row[(la - a + kSpan - 1) * kReach + lb - b + kSpan - 1] += dw.dot(D_->row(la * ny + lb)[e * kSpan + f]);
+      // A_KL = sum_I D_KI W_I D_LI over the control points I = (a - 1 + e, b - 1 + f) of K's
+      // row; L = (a + e - e2, b + f - f2) meets I at its own offset (e2, f2). Every vertex L on
+      // the grid is summed (the rows of vertices without water hold what their particles
+      // put there; compressing drops them), in the order of I, then (e2, f2).
+      const Vec2* const dk = D_->row(K);
+      for (int e = 0; e < kSpan; ++e) {
+        const int i = a - 1 + e;
+        if (i < 0 || i >= node_nx_) continue;
+        const int e2_lo = std::max(0, a + e - grid_.cells_x), e2_hi = std::min(kSpan - 1, a + e);
+        for (int f = 0; f < kSpan; ++f) {
+          const int j = b - 1 + f;
+          if (j < 0 || j >= node_ny_) continue;
+          const int I = i * node_ny_ + j;
+          const Vec2 dw = dk[e * kSpan + f].cwiseProduct(inverse_mass_[I]);
+          if (dw.isZero(0.0)) continue;
+          const int f2_lo = std::max(0, b + f - grid_.cells_y), f2_hi = std::min(kSpan - 1, b + f);
+          for (int e2 = e2_lo; e2 <= e2_hi; ++e2) {
+            const int L0 = K + (e - e2) * ny + f;                                      // L at f2 = 0
+            double* const out = row + (e - e2 + kSpan - 1) * kReach + f + kSpan - 1;  // its entry
+            for (int f2 = f2_lo; f2 <= f2_hi; ++f2) out[-f2] += dw.dot(D_->row(L0 - f2)[e2 * kSpan + f2]);
           }
         }
-      });
+      }
       if (stabilization_ > 0.0)
         for (int axis = 0; axis < 2; ++axis) {
           const int step = axis == 0 ? ny : 1, bit = axis == 0 ? 1 : 2;
@@ -241,7 +252,7 @@ class PressureSystem {
   }
 
   PressureGrid grid_;
-  int node_ny_ = 0;
+  int node_nx_ = 0, node_ny_ = 0;
   const DivergenceOperator<P>* D_ = nullptr;
   NodeBox nodes_, vertices_;
   double stabilization_ = 0.0;  // alpha / rho0
