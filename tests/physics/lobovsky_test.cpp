@@ -161,8 +161,9 @@ TEST_CASE("Lobovsky dam break at h = 10 mm: reading back the smoothed J's values
 TEST_CASE("Lobovsky dam break, incompressible, at h = 10 mm: arrival and plateau at z = 30 mm against the experiment",
           "[physics][lobovsky][incompressible]") {
   // scenes/lobovsky_h300_incompressible.toml (method.md §12) as shipped (J from the hats'
-  // fill, volume correction 0.1), only coarser, up to T* = 5.5. Measured 2026-12-03 (675
-  // solves, incomplete Cholesky): arrival 2.516 against 2.496 (+0.020); plateau ratio 1.164
+  // fill, volume correction 0.1, the multigrid solve), only coarser, up to T* = 5.5. Measured
+  // 2026-12-03 (676 solves, multigrid; 675 with incomplete Cholesky, the same to three
+  // digits): arrival 2.516 against 2.496 (+0.020); plateau ratio 1.164
   // (0.686 against 0.589), which the wall's reaction over the same 8 mm reads too (0.680 to
   // T* = 6; the weakly compressible model at this grid: 1.246). With J carried (before), the
   // ratio was 0.956: the particles crowded by the wall and read 16 % below the wall's
