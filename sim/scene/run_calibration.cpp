@@ -11,12 +11,15 @@ namespace bsmpm {
 RateFeatures rate_features(const SceneDescription& scene, const RunCost& cost) {
   RateFeatures f;
   f.order = scene.order;
-  bool fluid = false, elastic = false;
+  bool fluid = false, elastic = false, incompressible = false;
   for (const BodyDescription& b : scene.bodies) {
     fluid = fluid || is_fluid(b.material);
     elastic = elastic || is_elastic(b.material);
+    incompressible = incompressible || is_incompressible(b.material);
   }
-  f.materials = elastic && fluid ? "elastic+fluid" : elastic ? "elastic" : fluid ? "fluid" : "rigid";
+  // Incompressible water is a kind of its own: its steps carry the pressure solve.
+  const std::string water = incompressible ? "incompressible" : "fluid";
+  f.materials = elastic && fluid ? "elastic+" + water : elastic ? "elastic" : fluid ? water : "rigid";
   using FluidVolume = SolverSettings::FluidVolume;
   const FluidVolume volume = scene.solver.fluid_volume;
   f.fluid_volume = !fluid                               ? "none"
@@ -108,7 +111,8 @@ double relative_cost(const RateFeatures& f) {
   const double volume = f.fluid_volume == "smoothed" ? 1.31 : f.fluid_volume == "projected" ? 1.08 : 1.0;
   const double shifting = f.shifting ? 1.27 : 1.0;
   const double fields = std::pow(1.09, std::max(0, f.grid_fields - 1));
-  return order * update * volume * shifting * fields;
+  const double projection = f.materials.find("incompressible") != std::string::npos ? kIncompressibleCost : 1.0;
+  return order * update * volume * shifting * fields * projection;
 }
 
 namespace {

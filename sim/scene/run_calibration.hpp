@@ -27,7 +27,7 @@ struct MachineIdentity {
 // What in a scene changes the time per particle-step.
 struct RateFeatures {
   int order = 2;                      // spline order: (P + 1)^2 nodes per particle
-  std::string materials = "fluid";    // the deformable kinds present: "fluid", "elastic", "elastic+fluid"
+  std::string materials = "fluid";    // the deformable kinds present: "fluid" (or "incompressible"), "elastic", "elastic+fluid"
   std::string fluid_volume = "none";  // "particle", "smoothed", "projected"; "none" without fluid
   std::string velocity_update = "flip";  // "flip" or "apic"
   bool shifting = false;              // particle shifting (a pass over the particles)
@@ -42,6 +42,15 @@ RateFeatures rate_features(const SceneDescription& scene, const RunCost& cost);
 // per feature (the spline order, APIC, the volume smoothing or projection, shifting, each
 // further grid field), multiplied.
 double relative_cost(const RateFeatures& features);
+
+// A step of incompressible water (method.md §12: the projection and its pressure solve, the
+// multigrid) costs this many times the explicit step of the same features. Measured
+// 2026-12-03, CPU time on 1 thread, the Lobovsky tank at 4 mm (45,000 particles, APIC,
+// shifting, J at the particle): the incompressible scene as shipped 43.6 ms a step over its
+// whole run (89.1 s, 2,043 steps; 34.2 ms in bench's first 100), the weakly compressible
+// scene with the same features 5.9 ms (bench). Used only where the nearest record is of the
+// other model: a record of incompressible water has the solve in its rate.
+inline constexpr double kIncompressibleCost = 7.4;
 
 // A particle of a rigid body costs this share of a deformable one (it carries no stress and
 // takes its velocity from the body): measured 0.65 in wall time and 0.87 in CPU time with

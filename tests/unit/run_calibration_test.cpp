@@ -154,6 +154,11 @@ TEST_CASE("predict_wall_time: particle-steps at the record's rate, scaled to the
   RateFeatures two_fields = plain;
   two_fields.grid_fields = 2;
   CHECK(relative_cost(two_fields) == Approx(1.09).epsilon(1e-12));
+  // Incompressible water: a kind of its own (its records apart from the weakly compressible
+  // model's), each step the pressure solve's kIncompressibleCost times the explicit step's.
+  const RateFeatures incompressible = features_of("lobovsky_h300_incompressible.toml");
+  CHECK(incompressible.materials == "incompressible");
+  CHECK(relative_cost(incompressible) == Approx(1.34 * 1.27 * kIncompressibleCost).epsilon(1e-12));
   const WallTime from_costlier = predict_wall_time(cost, plain, record(1, lobovsky, 7.2e6, 0.0));
   CHECK(from_costlier.stepping_seconds == Approx(10.0 / 2.229358).epsilon(1e-12));
   CHECK(from_costlier.particle_steps_per_second == Approx(7.2e6 * 2.229358).epsilon(1e-12));
