@@ -246,6 +246,7 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
                                                            : SolverSettings::SmoothedVolumeBasis::kLinearPatches;
     }
     s.solver.shifting = solver->number_or("particle_shifting", 0.0, Range::closed(0.0, 0.5));
+    s.solver.subcell_shifting = solver->number_or("subcell_shifting", 0.0, Range::closed(0.0, 0.25));
     const Vec2 range = solver->vec2_or("density_range", Vec2(s.solver.min_density_ratio, s.solver.max_density_ratio),
                                        Range::positive());
     if (!(range.x() < 1.0 && range.y() > 1.0)) solver->fail("density_range", "must be [low, high] with low < 1 < high");

@@ -37,14 +37,17 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
   }
   st_.schedules.resize(st_.bodies.size());
   st_.weights.resize(st_.particles.size());
-  if (settings_.shifting > 0.0) {
+  if (settings_.shifting > 0.0 || settings_.subcell_shifting > 0.0) {
     std::optional<Vec2> spacing;  // the first fluid's seeding lattice (particle_shifting.hpp)
+    std::vector<int> fluid_layers;
     for (const Body& b : st_.bodies)
       if (is_fluid(b.material)) {
         st_.layers[b.layer].tracks_volume = true;
+        fluid_layers.push_back(b.layer);
         if (!spacing) spacing = b.spacing;
       }
-    shifting_.emplace(st_.grid, spacing.value_or(st_.grid.cell_size() / 2.0), settings_.shifting);
+    shifting_.emplace(st_.grid, spacing.value_or(st_.grid.cell_size() / 2.0), settings_.shifting,
+                      settings_.subcell_shifting, fluid_layers);
   }
   for (auto& layer : st_.layers) layer.resize(st_.grid.node_count());
   st_.index_of_id.resize(st_.particles.size());
@@ -133,6 +136,7 @@ void BsmpmSimulation<P>::advance(double dt) {
   if (settings_.sort_interval > 0 && st_.step > 0 && st_.step % settings_.sort_interval == 0) sort_.sort(st_);
   basis_.compute(st_);                                      // step 1
   ParticleToGrid<P>::scatter(st_, affine());                // step 2: eqs. 5-7
+  if (shifting_) shifting_->scatter_subcell(st_);           // §10: the sub-cell volumes, when on
   for (auto* e : force_hooks_) {                            // step 3: eq. 8
     const PhaseScope timed(st_.timer, StepPhase::kEffects);
     e->grid_forces(st_);

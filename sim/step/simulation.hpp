@@ -52,6 +52,9 @@ struct SolverSettings {
   // Particle shifting (docs/method.md §10): fluid particles drift down the gradient of the
   // grid's volume fraction, D = shifting h^2 per step; 0 = off (the paper).
   double shifting = 0.0;
+  // Sub-cell shifting (docs/method.md §10): the same drift down the volume fraction at the
+  // particles' own spacing s, D_s = subcell_shifting s^2 per step; 0 = off.
+  double subcell_shifting = 0.0;
   // rho / rho0 = 1 / J that a deformable particle may reach: beyond it the step stops the
   // run as numerically unstable (solver.density_range; docs/method.md §2).
   double min_density_ratio = 0.5, max_density_ratio = 2.0;

@@ -132,6 +132,8 @@ const std::vector<BadCase> kCases = {
     {"unknown smoothed-volume basis",
      {{0, "[solver]\nfluid_volume = \"smoothed\"\nsmoothed_volume_basis = \"quadratic\""}}, 26, 25,
      "solver.smoothed_volume_basis", "must be \"velocity\", \"linear\" or \"linear_patches\""},
+    {"sub-cell shifting out of range", {{0, "[solver]\nsubcell_shifting = 0.5"}}, 25, 20, "solver.subcell_shifting",
+     "must be in \\[0, 0.25\\]"},
     {"material point off its body",
      {{0, "[[probes]]\nname = \"tip\"\ntype = \"material_point\"\nbody = \"water\"\npoint = [0.3, 0.15]"}},
      28, 9, "probes[1].point", "more than a grid cell away"},

@@ -69,7 +69,7 @@ long move_particles_and_remap_momentum(StepState<P>& st, double dt, double flip,
       const Vec2 x_old = ps.x[p];
       Vec2 x = ps.x[p] + dt * v_new;  // eq. 12 with v_I^{k+1}
       if (shift) {
-        Vec2 dx = shifting->shift(w, layer.volume, ny);
+        Vec2 dx = shifting->shift(w, layer.volume, ny, x_old, body.layer);
         // A shift never carries a particle out of the domain: that part of it is dropped.
         for (int k = 0; k < 2; ++k)
           if (x[k] + dx[k] < lo[k] || x[k] + dx[k] > hi[k]) dx[k] = 0.0;
