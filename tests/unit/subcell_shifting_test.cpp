@@ -69,7 +69,7 @@ TEST_CASE("Sub-cell volume: the seeding lattice reads phi = 1 and drifts nowhere
   CHECK(largest < 1e-12);
 }
 
-TEST_CASE("Sub-cell volume: columns bunched at the knots are pushed apart; the grid's splines do not see them",
+TEST_CASE("Sub-cell volume: columns bunched at the knots, which the grid's splines do not see, are pushed apart",
           "[shifting][unit]") {
   const Grid<2> grid(Vec2::Zero(), Vec2(kH, kH), kCellsX, kCellsY);
   const Lattice l = seeded(0.6);  // columns at knot +- 0.1 h (the 2 mm tank behind the break: 1.3 / 0.65)
