@@ -46,7 +46,7 @@ class ParticleShifting {
     const PhaseScope timed(st.timer, StepPhase::kParticleToGrid);
     for (std::size_t l = 0; l < subcell_.size(); ++l)
       if (subcell_[l]) {
-        subcell_[l]->clear(written_[l].i0, written_[l].i1);
+        subcell_[l]->clear(written_[l]);
         written_[l] = st.layers[l].active;
       }
     const Particles& ps = st.particles;

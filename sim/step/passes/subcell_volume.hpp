@@ -63,12 +63,15 @@ class SubcellVolume {
             axis_[1].inv_spacing * (lx * (p01 - p00) + hx.frac * (p11 - p10))};
   }
 
-  // The node columns a box of cells [i0, i1) touches are zeroed (the box the last step wrote).
-  void clear(int cell_i0, int cell_i1) {
-    const int first = std::clamp(cell_i0 * axis_[0].ratio, 0, axis_[0].nodes);
-    const int last = std::clamp(cell_i1 * axis_[0].ratio + 1, 0, axis_[0].nodes);
-    std::fill(volume_.begin() + std::size_t(first) * axis_[1].nodes,
-              volume_.begin() + std::size_t(last) * axis_[1].nodes, 0.0);
+  // Zeroes the nodes of the cells in `box` (the box of cells the last scatter wrote).
+  void clear(const NodeBox& box) {
+    const int ny = axis_[1].nodes;
+    const int i0 = std::clamp(box.i0 * axis_[0].ratio, 0, axis_[0].nodes);
+    const int i1 = std::clamp(box.i1 * axis_[0].ratio + 1, 0, axis_[0].nodes);
+    const int j0 = std::clamp(box.j0 * axis_[1].ratio, 0, ny);
+    const int j1 = std::clamp(box.j1 * axis_[1].ratio + 1, 0, ny);
+    if (i0 >= i1 || j0 >= j1) return;
+    for (int i = i0; i < i1; ++i) std::fill_n(volume_.begin() + std::size_t(i) * ny + j0, j1 - j0, 0.0);
   }
 
   // The smaller node spacing, h / r.
