@@ -18,6 +18,8 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "step/passes/volume_fit.hpp"
@@ -30,8 +32,8 @@ class VolumeSmoothing {
  public:
   VolumeSmoothing() = default;
   VolumeSmoothing(const Grid<P>& grid, bool values_only)
-      : moments_(kMoments * grid.node_count(), 0.0), inverse_cell_(grid.cell_size().cwiseInverse()),
-        values_only_(values_only) {}
+      : moments_(kMoments * grid.node_count(), 0.0), rows_(grid.nx()),
+        inverse_cell_(grid.cell_size().cwiseInverse()), values_only_(values_only) {}
 
   // Adds particle p's share of the moments (its J already updated); called in the scatter's
   // strip order, so the sums do not depend on the threads.
@@ -43,6 +45,11 @@ class VolumeSmoothing {
     const Vec2& x = st.particles.x[p];
     const auto& w = st.weights[p];
     const double m = st.particles.mass[p], mJ = m * st.particles.J[p];
+    // The rows written, per first column: a strip's particles alone have their first column
+    // in it, so the strips running together never share an entry.
+    RowRange& rows = rows_[w.i0];
+    rows.first = std::min(rows.first, w.j0);
+    rows.last = std::max(rows.last, w.j0);
     // The nine products in lane pairs (the same products and sums as one by one, so the
     // same bits): mom[0..1] = (x0, x1) y0, mom[2..3] = (x0 y1, x2 y0), mom[4..5] =
     // (x1 y1, x0 y2), mom[6..7] = (j0, j1) y0, mom[8] = j0 y1.
@@ -73,11 +80,14 @@ class VolumeSmoothing {
     }
   }
 
-  // Each control point's fit over the box (volume_fit.hpp).
+  // Each written control point's fit (volume_fit.hpp), in the columns of the box b: those of
+  // the particles' stencils (the untouched ones have no mass and stay zero).
   void fit(const NodeBox& b, int ny) {
 #pragma omp parallel for schedule(static)
-    for (int i = b.i0; i < b.i1; ++i)
-      for (int j = b.j0; j < b.j1; ++j) fit_volume_moments(&moments_[kMoments * (i * ny + j)]);
+    for (int i = b.i0; i < b.i1; ++i) {
+      const auto [j0, j1] = rows_written(i);
+      for (int j = j0; j < j1; ++j) fit_volume_moments(&moments_[kMoments * (i * ny + j)]);
+    }
   }
 
   // J_p = sum_I S_Ip (J_I + g_I . (x_p - xi_I)) from the fitted control points, or with
@@ -120,18 +130,42 @@ class VolumeSmoothing {
     return J;
   }
 
-  // Zeroes the box for the next step.
+  // Zeroes the control points written, in the columns of the box b, for the next step: with
+  // the water spread over the tank the box is mostly empty (validation.md, Speed).
   void clear(const NodeBox& b, int ny) {
 #pragma omp parallel for schedule(static) if ((b.i1 - b.i0) * (b.j1 - b.j0) > 4096)
-    for (int i = b.i0; i < b.i1; ++i)
-      std::fill_n(moments_.begin() + kMoments * (i * ny + b.j0), kMoments * (b.j1 - b.j0), 0.0);
+    for (int i = b.i0; i < b.i1; ++i) {
+      const auto [j0, j1] = rows_written(i);
+      if (j0 < j1) std::fill_n(moments_.begin() + kMoments * (i * ny + j0), kMoments * (j1 - j0), 0.0);
+    }
+    std::fill(rows_.begin() + b.i0, rows_.begin() + b.i1, RowRange{});
   }
 
-  std::size_t bytes() const { return heap_bytes(moments_); }
+  std::size_t bytes() const { return heap_bytes(moments_) + heap_bytes(rows_); }
 
  private:
   static constexpr int kMoments = 9;
+  static constexpr int kNoRow = std::numeric_limits<int>::max();
+
+  // The rows [j0, j1) of column i that particles wrote to: those of the particles whose
+  // first column is i - P ... i (empty when none; the range may span rows between two groups).
+  std::pair<int, int> rows_written(int i) const {
+    int j0 = kNoRow, j1 = -1;
+    for (int a = std::max(i - P, 0); a <= i; ++a) {
+      j0 = std::min(j0, rows_[a].first);
+      j1 = std::max(j1, rows_[a].last);
+    }
+    return {j0, j1 + P + 1};
+  }
+
+  // The least and greatest first row of the particles whose stencil's first column is this
+  // one (kNoRow / -1: none); read by fit() and clear(), reset by clear().
+  struct RowRange {
+    int first = kNoRow, last = -1;
+  };
+
   std::vector<double> moments_;  // per control point
+  std::vector<RowRange> rows_;   // per column
   Vec2 inverse_cell_ = Vec2::Zero();
   bool values_only_ = false;
 };
