@@ -53,23 +53,30 @@ long move_particles_and_remap_momentum(StepState<P>& st, double dt, double flip,
     const bool shift = shifting && layer.tracks_volume && is_fluid(body.material);
     Vec2* const remap = layer.remap_velocity.data();  // read once (see particle_to_grid.hpp)
     long body_clamped = 0;
-    st.schedules[b].for_each([&, remap](std::uint32_t p) {
-      const auto& w = st.weights[p];
+    st.schedules[b].for_each([&, remap, gx, gy, ny, dt, flip](std::uint32_t p) {
+      // Local copies of the weights and of what the scatter reads: a store to the particle or
+      // to the grid may alias the closure and the weights, and would reload them.
+      const ParticleWeights<P> w = st.weights[p];
+      Vec2* const remap_at = remap;
+      const double* const gx_at = gx;
+      const double* const gy_at = gy;
+      const int ny_at = ny;
+      const double dt_at = dt, flip_at = flip;
       GridVelocityAt grid;
       Mat2 C = Mat2::Zero();
-      if (kAffine && !rigid) C = gather_velocity_and_affine<P>(w, layer, ny, ps.x[p], gx, gy, floor, grid);
-      else grid = gather_velocity<P>(w, layer, ny);
+      if (kAffine && !rigid) C = gather_velocity_and_affine<P>(w, layer, ny_at, ps.x[p], gx_at, gy_at, floor, grid);
+      else grid = gather_velocity<P>(w, layer, ny_at);
       Vec2 v, v_new = grid.velocity;
       if (rigid) {
         v = rigid->velocity;
         v_new = v;
       } else {
-        v = flip * (ps.v[p] + grid.increment) + (1.0 - flip) * v_new;  // eq. 11 (flip = 1: paper)
+        v = flip_at * (ps.v[p] + grid.increment) + (1.0 - flip_at) * v_new;  // eq. 11 (flip = 1: paper)
       }
       const Vec2 x_old = ps.x[p];
-      Vec2 x = ps.x[p] + dt * v_new;  // eq. 12 with v_I^{k+1}
+      Vec2 x = ps.x[p] + dt_at * v_new;  // eq. 12 with v_I^{k+1}
       if (shift) {
-        Vec2 dx = shifting->shift(w, layer.volume, ny, x_old, body.layer);
+        Vec2 dx = shifting->shift(w, layer.volume, ny_at, x_old, body.layer);
         // A shift never carries a particle out of the domain: that part of it is dropped.
         for (int k = 0; k < 2; ++k)
           if (x[k] + dx[k] < lo[k] || x[k] + dx[k] > hi[k]) dx[k] = 0.0;
@@ -84,9 +91,9 @@ long move_particles_and_remap_momentum(StepState<P>& st, double dt, double flip,
       ps.x[p] = x;
       if constexpr (kAffine) {
         ps.C[p] = C;
-        scatter_affine<P>(w, ps.mass[p] * v, ps.mass[p] * C, x_old, gx, gy, remap, ny);  // eq. 13, affine
+        scatter_affine<P>(w, ps.mass[p] * v, ps.mass[p] * C, x_old, gx_at, gy_at, remap_at, ny_at);  // eq. 13, affine
       } else {
-        scatter<P>(w, ps.mass[p] * v, remap, ny);  // eq. 13
+        scatter<P>(w, ps.mass[p] * v, remap_at, ny_at);  // eq. 13
       }
     });
     clamped += body_clamped;

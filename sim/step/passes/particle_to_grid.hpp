@@ -47,7 +47,14 @@ class ParticleToGrid {
     const double* const gy = st.grid.greville_y();
     const ParticleWeights<P>* const weights = st.weights.data();
     st.schedules[b].for_each([&, mass, momentum, force, mass_gradient, volume, gx, gy, weights](std::uint32_t p) {
-      const auto& w = weights[p];
+      // Local copies of the weights and of the fields' addresses: a store to a field may alias
+      // the closure and the weights' arrays, and would reload them at every control point.
+      const ParticleWeights<P> w = weights[p];
+      double* const mass_at = mass;
+      Vec2* const momentum_at = momentum;
+      Vec2* const force_at = force;
+      Vec2* const mass_gradient_at = mass_gradient;
+      double* const volume_at = volume;
       const double m = ps.mass[p];
       const Vec2 mv = m * ps.v[p];
       const double Vp = ps.volume(p);
@@ -67,16 +74,16 @@ class ParticleToGrid {
         if constexpr (kAffine) at_column += (gx[w.i0 + a] - xp.x()) * mC.col(0);
         for (int c = 0; c <= P; ++c) {
           const double s = wx * w.wy[c];
-          mass[row + c] += mx * w.wy[c];  // eq. 5
+          mass_at[row + c] += mx * w.wy[c];  // eq. 5
           if constexpr (kAffine) {
-            momentum[row + c] += s * (at_column + dy[c] * mC.col(1));
+            momentum_at[row + c] += s * (at_column + dy[c] * mC.col(1));
           } else {
-            momentum[row + c] += s * mv;  // eq. 6 (numerator)
+            momentum_at[row + c] += s * mv;  // eq. 6 (numerator)
           }
-          force[row + c] -= w.wy[c] * force_x + w.gy[c] * force_y;  // eq. 7
+          force_at[row + c] -= w.wy[c] * force_x + w.gy[c] * force_y;  // eq. 7
           if constexpr (kMassGradient)  // contact normals
-            mass_gradient[row + c] += m * Vec2(w.gx[a] * w.wy[c], wx * w.gy[c]);
-          if constexpr (kVolume) volume[row + c] += s * Vp;
+            mass_gradient_at[row + c] += m * Vec2(w.gx[a] * w.wy[c], wx * w.gy[c]);
+          if constexpr (kVolume) volume_at[row + c] += s * Vp;
         }
       }
     });
