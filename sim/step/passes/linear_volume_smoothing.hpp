@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "step/passes/volume_fit.hpp"
@@ -29,7 +31,7 @@ class LinearVolumeSmoothing {
   LinearVolumeSmoothing() = default;
   LinearVolumeSmoothing(const Grid<P>& grid, bool values_only, bool patches)
       : cells_x_(grid.bx.cells()), cells_y_(grid.by.cells()), ny_(cells_y_ + 1),
-        moments_(kMoments * std::size_t(cells_x_ + 1) * (cells_y_ + 1), 0.0),
+        moments_(kMoments * std::size_t(cells_x_ + 1) * (cells_y_ + 1), 0.0), rows_(cells_x_ + 1),
         origin_(grid.origin()), inverse_cell_(grid.cell_size().cwiseInverse()), values_only_(values_only),
         patches_(patches) {}
 
@@ -38,6 +40,11 @@ class LinearVolumeSmoothing {
   void add_moments(const StepState<P>& st, std::uint32_t p) {
     const Hats h = hats(st, p);
     const double m = st.particles.mass[p], mJ = m * st.particles.J[p];
+    // The rows written, per cell column: a strip's particles move less than a cell, so the
+    // strips running together never share an entry (the moments' own margin).
+    RowRange& rows = rows_[h.i];
+    rows.first = std::min(rows.first, h.j);
+    rows.last = std::max(rows.last, h.j);
     double* mom = moments_.data() + kMoments * (std::size_t(h.i) * ny_ + h.j);
     if (patches_) {
       // The cell's moments about its first knot, d = (tx, ty); fit() carries them to the knots.
@@ -84,11 +91,14 @@ class LinearVolumeSmoothing {
     last_cell_y_ = std::max(box_.j1 - 2, box_.j0);
   }
 
+  // The fit at the knots written (the others have no mass and stay zero).
   void fit() {
     if (patches_) cells_to_knots();
 #pragma omp parallel for schedule(static)
-    for (int i = box_.i0; i < box_.i1; ++i)
-      for (int j = box_.j0; j < box_.j1; ++j) fit_volume_moments(&moments_[kMoments * (std::size_t(i) * ny_ + j)]);
+    for (int i = box_.i0; i < box_.i1; ++i) {
+      const auto [j0, j1] = rows_written(i);
+      for (int j = j0; j < j1; ++j) fit_volume_moments(&moments_[kMoments * (std::size_t(i) * ny_ + j)]);
+    }
   }
 
   // With patches, each knot's moments from the cells around it (in place: knot K replaces
@@ -147,17 +157,39 @@ class LinearVolumeSmoothing {
     return h.wx[0] * row0 + h.wx[1] * row1;
   }
 
-  // Zeroes the box for the next step.
+  // Zeroes the knots written for the next step: with the water spread over the tank the box
+  // is mostly empty (validation.md, Speed).
   void clear() {
 #pragma omp parallel for schedule(static) if ((box_.i1 - box_.i0) * (box_.j1 - box_.j0) > 4096)
-    for (int i = box_.i0; i < box_.i1; ++i)
-      std::fill_n(moments_.begin() + kMoments * (std::size_t(i) * ny_ + box_.j0), kMoments * (box_.j1 - box_.j0), 0.0);
+    for (int i = box_.i0; i < box_.i1; ++i) {
+      const auto [j0, j1] = rows_written(i);
+      if (j0 < j1) std::fill_n(moments_.begin() + kMoments * (std::size_t(i) * ny_ + j0), kMoments * (j1 - j0), 0.0);
+    }
+    std::fill(rows_.begin() + box_.i0, rows_.begin() + box_.i1, RowRange{});
   }
 
-  std::size_t bytes() const { return heap_bytes(moments_); }
+  std::size_t bytes() const { return heap_bytes(moments_) + heap_bytes(rows_); }
 
  private:
   static constexpr int kMoments = 9;
+  static constexpr int kNoRow = std::numeric_limits<int>::max();
+  // The least and greatest row of the cells the particles wrote to, per cell column (kNoRow /
+  // -1: none); read by fit() and clear(), reset by clear().
+  struct RowRange {
+    int first = kNoRow, last = -1;
+  };
+
+  // The rows [j0, j1) of knot column i written: those of cells i - 1 and i and a knot above
+  // (the patches' carry to the knots reaches no further); the range may span empty rows.
+  std::pair<int, int> rows_written(int i) const {
+    int j0 = kNoRow, j1 = -1;
+    for (int a = std::max(i - 1, 0); a <= i && a <= cells_x_; ++a) {
+      j0 = std::min(j0, rows_[a].first);
+      j1 = std::max(j1, rows_[a].last);
+    }
+    return {j0, j1 + 2};
+  }
+
   // The particle's cell (i, j) = its first knot, the hats' values and the offsets
   // d = (x - x_K) / h of its four knots.
   struct Hats {
@@ -185,6 +217,7 @@ class LinearVolumeSmoothing {
 
   int cells_x_ = 0, cells_y_ = 0, ny_ = 0;
   std::vector<double> moments_;  // per knot
+  std::vector<RowRange> rows_;   // per cell column
   Vec2 origin_ = Vec2::Zero(), inverse_cell_ = Vec2::Zero();
   bool values_only_ = false;
   bool patches_ = false;  // fit weights 1 over each knot's four cells instead of its hat
