@@ -24,14 +24,19 @@
 // cycle stays symmetric positive definite.
 //
 // From
-// x = 0 the forward sweep reads only the strictly lower triangle and leaves the residual
-// -U x (U the strictly upper triangle), so sweep and residual cost one pass over A. Every
-// loop is serial in a fixed order (the same bits for any thread count); the levels are
-// compressed-row arrays that keep their storage from step to step (the Galerkin products
-// by a dense accumulator per row, no allocation once the water stops growing).
+// x = 0 the forward sweep reads only the strictly lower triangle (in its order) and leaves the residual
+// -U x (U the strictly upper triangle), so sweep and residual cost one pass over A. The
+// sweeps take the unknowns in strips of vertex columns wider than a row's reach, the even
+// strips first, then the odd ones (Gauss-Seidel in that fixed order, so the cycle stays
+// symmetric): the strips of one parity do not couple and are swept side by side. The
+// Galerkin products and the transfers go by rows. Each value is summed by one thread in a
+// fixed order: the same bits for any thread count. The levels are compressed-row arrays that
+// keep their storage from step to step (the Galerkin products by a dense accumulator per
+// row, no allocation once the water stops growing).
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -55,6 +60,10 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
   // together exactly in the smoother); 0: none.
   void set_thin_rows(int entries) { thin_rows_ = entries; }
   int thin_unknowns() const { return levels_.empty() ? 0 : static_cast<int>(levels_[0].thin.size()); }
+
+  // How many vertices along a grid line a row of the finest level reaches at most (the
+  // coarser levels' rows reach no further): the smoother's strips are wider.
+  void set_reach(int vertices) { reach_ = vertices; }
 
   // The unknowns' vertices K = a * ny + b on the nx x ny vertex grid, in A's order; set
   // before compute().
@@ -88,6 +97,7 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
       const Csr A = matrix_of(depth_);
       level.n = A.rows;
       level.inverse_diagonal.resize(level.n);
+#pragma omp parallel for schedule(static) if (level.n > kParallelRows)
       for (int i = 0; i < level.n; ++i) {
         double d = 0.0;
         for (int e = A.outer[i]; e < A.outer[i + 1]; ++e)
@@ -95,6 +105,7 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
         level.inverse_diagonal[i] = d > 0.0 ? 1.0 / d : 0.0;
       }
       if (depth_ == 0) set_thin(level, A);
+      set_strips(level, nx, ny, *vertices);
       level.x.resize(level.n);
       level.r.resize(level.n);
       level.b.resize(level.n);
@@ -164,6 +175,10 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     Storage P, R, AP;                  // prolongation from the next level, R = P^T, and A P
     std::vector<int> coarse_vertices;  // the next level's unknowns, as vertices of its grid
     std::vector<int> position;         // coarse vertex -> its unknown index, -1 if none
+    // The smoother's order (set_strips): [strips[s], strips[s + 1]) the unknowns of the s-th
+    // non-empty strip of vertex columns; coloured[c] the strips whose number has parity c.
+    std::vector<int> strips;
+    std::vector<std::vector<int>> coloured;  // per colour: the strips (indices into strips)
     Eigen::VectorXd inverse_diagonal, x, r, b;
     // The thin unknowns (level 0): their indices, A restricted to them and its factor.
     std::vector<int> thin;
@@ -175,36 +190,66 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
   Csr matrix_of(int l) const { return l == 0 ? fine_ : levels_[l].A.view(); }
 
   // C = A B (rows of A, columns 0..cols-1 of B), each row gathered in a dense accumulator
-  // in A's and B's order, then written in column order.
+  // in A's and B's order, then written in column order. Each row is its own sum, so the
+  // chunks of rows, computed side by side, give the same bits for any thread count.
   void multiply(const Csr& A, const Csr& B, int cols, Storage& C) {
-    accumulator_.assign(cols, 0.0);
-    touched_.assign(cols, 0);
-    C.outer.assign(1, 0);
-    C.inner.clear();
-    C.value.clear();
-    std::vector<int>& columns = columns_;
-    for (int i = 0; i < A.rows; ++i) {
-      columns.clear();
-      for (int e = A.outer[i]; e < A.outer[i + 1]; ++e) {
-        const int k = A.inner[e];
-        const double a = A.value[e];
-        for (int f = B.outer[k]; f < B.outer[k + 1]; ++f) {
-          const int j = B.inner[f];
-          if (!touched_[j]) {
-            touched_[j] = 1;
-            columns.push_back(j);
+    const int rows = A.rows;
+    const int count = rows > kParallelRows ? kChunks : 1;
+    if (static_cast<int>(chunks_.size()) < count) chunks_.resize(count);
+#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
+    for (int c = 0; c < count; ++c) {
+      Chunk& chunk = chunks_[c];
+      if (static_cast<int>(chunk.accumulator.size()) < cols) {
+        chunk.accumulator.assign(cols, 0.0);
+        chunk.touched.assign(cols, 0);
+      }
+      chunk.inner.clear();
+      chunk.value.clear();
+      chunk.length.clear();
+      std::vector<int>& columns = chunk.columns;
+      double* const accumulator = chunk.accumulator.data();
+      char* const touched = chunk.touched.data();
+      for (int i = static_cast<int>(std::int64_t(rows) * c / count); i < std::int64_t(rows) * (c + 1) / count; ++i) {
+        columns.clear();
+        for (int e = A.outer[i]; e < A.outer[i + 1]; ++e) {
+          const int k = A.inner[e];
+          const double a = A.value[e];
+          for (int f = B.outer[k]; f < B.outer[k + 1]; ++f) {
+            const int j = B.inner[f];
+            if (!touched[j]) {
+              touched[j] = 1;
+              columns.push_back(j);
+            }
+            accumulator[j] += a * B.value[f];
           }
-          accumulator_[j] += a * B.value[f];
         }
+        std::sort(columns.begin(), columns.end());
+        for (int j : columns) {
+          chunk.inner.push_back(j);
+          chunk.value.push_back(accumulator[j]);
+          accumulator[j] = 0.0;
+          touched[j] = 0;
+        }
+        chunk.length.push_back(static_cast<int>(columns.size()));
       }
-      std::sort(columns.begin(), columns.end());
-      for (int j : columns) {
-        C.inner.push_back(j);
-        C.value.push_back(accumulator_[j]);
-        accumulator_[j] = 0.0;
-        touched_[j] = 0;
+    }
+    C.outer.resize(rows + 1);
+    C.outer[0] = 0;
+    std::vector<int>& start = chunk_start_;
+    start.resize(count);
+    for (int c = 0, i = 0; c < count; ++c) {
+      start[c] = C.outer[i];
+      for (int length : chunks_[c].length) {
+        C.outer[i + 1] = C.outer[i] + length;
+        ++i;
       }
-      C.outer.push_back(static_cast<int>(C.inner.size()));
+    }
+    C.inner.resize(C.outer[rows]);
+    C.value.resize(C.outer[rows]);
+#pragma omp parallel for schedule(static) if (count > 1)
+    for (int c = 0; c < count; ++c) {
+      std::copy(chunks_[c].inner.begin(), chunks_[c].inner.end(), C.inner.begin() + start[c]);
+      std::copy(chunks_[c].value.begin(), chunks_[c].value.end(), C.value.begin() + start[c]);
     }
   }
 
@@ -310,6 +355,36 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     }
   }
 
+  // The strips of `level` (its unknowns' vertices on the nx x ny grid, in vertex order):
+  // columns [s W, (s + 1) W) with W = max(reach + 1, nx / kStrips), numbered s; the
+  // non-empty ones listed per parity of s. Strips of one parity lie at least W columns apart,
+  // beyond any row's reach, so the smoother sweeps them side by side (a fixed order: Gauss-
+  // Seidel in the order even strips, then odd strips, each by columns; the same bits for any
+  // thread count).
+  void set_strips(Level& level, int nx, int ny, const std::vector<int>& vertices) const {
+    const int width = std::max(reach_ + 1, nx / kStrips);
+    level.strips.clear();
+    level.coloured.assign(2, {});
+    int last = -1;
+    for (int k = 0; k < level.n; ++k) {
+      const int strip = vertices[k] / ny / width;
+      if (strip == last) continue;
+      level.coloured[strip % 2].push_back(static_cast<int>(level.strips.size()));
+      level.strips.push_back(k);
+      last = strip;
+    }
+    level.strips.push_back(level.n);
+  }
+
+  // Calls f(begin, end) for every strip of `colour` of `level`, side by side when it is large.
+  template <class F>
+  static void for_strips(const Level& level, int colour, F&& f) {
+    const std::vector<int>& list = level.coloured[colour];
+    const int count = static_cast<int>(list.size());
+#pragma omp parallel for schedule(dynamic, 1) if (level.n > kParallelRows)
+    for (int t = 0; t < count; ++t) f(level.strips[list[t]], level.strips[list[t] + 1]);
+  }
+
   // One V-cycle on level l from x = 0: levels_[l].x = M_l^-1 levels_[l].b.
   void cycle(int l) const {
     Level& level = levels_[l];
@@ -322,18 +397,45 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     }
     const Csr A = matrix_of(l);
     const double* const inverse_diagonal = level.inverse_diagonal.data();
-    // Forward Gauss-Seidel from x = 0 (the strictly lower triangle), then r = b - A x = -U x.
-    for (int i = 0; i < n; ++i) {
-      double sum = b[i];
-      for (int e = A.outer[i]; e < A.outer[i + 1] && A.inner[e] < i; ++e) sum -= A.value[e] * x[A.inner[e]];
-      x[i] = sum * inverse_diagonal[i];
-    }
+    // Forward Gauss-Seidel from x = 0 in the strips' order: the even strips (reading only
+    // their own unknowns before i), then the odd ones (reading everything but their own
+    // unknowns after i, still zero).
+    for_strips(level, 0, [&](int s, int end) {
+      for (int i = s; i < end; ++i) {
+        double sum = b[i];
+        int e = A.outer[i];
+        while (e < A.outer[i + 1] && A.inner[e] < s) ++e;
+        for (; e < A.outer[i + 1] && A.inner[e] < i; ++e) sum -= A.value[e] * x[A.inner[e]];
+        x[i] = sum * inverse_diagonal[i];
+      }
+    });
+    for_strips(level, 1, [&](int s, int end) {
+      for (int i = s; i < end; ++i) {
+        double sum = b[i];
+        for (int e = A.outer[i]; e < A.outer[i + 1] && A.inner[e] < i; ++e) sum -= A.value[e] * x[A.inner[e]];
+        for (int e = A.outer[i + 1] - 1; e >= A.outer[i] && A.inner[e] >= end; --e) sum -= A.value[e] * x[A.inner[e]];
+        x[i] = sum * inverse_diagonal[i];
+      }
+    });
+    // r = b - A x: what each row's update did not yet see (an even row: the unknowns before
+    // its strip and those after it; an odd row: its strip's unknowns after it).
     double* const r = level.r.data();
-    for (int i = 0; i < n; ++i) {
-      double sum = 0.0;
-      for (int e = A.outer[i + 1] - 1; e >= A.outer[i] && A.inner[e] > i; --e) sum -= A.value[e] * x[A.inner[e]];
-      r[i] = sum;
-    }
+    for_strips(level, 0, [&](int s, int end) {
+      for (int i = s; i < end; ++i) {
+        double sum = 0.0;
+        for (int e = A.outer[i]; e < A.outer[i + 1] && A.inner[e] < s; ++e) sum -= A.value[e] * x[A.inner[e]];
+        for (int e = A.outer[i + 1] - 1; e >= A.outer[i] && A.inner[e] > i; --e) sum -= A.value[e] * x[A.inner[e]];
+        r[i] = sum;
+      }
+    });
+    for_strips(level, 1, [&](int s, int end) {
+      for (int i = s; i < end; ++i) {
+        double sum = 0.0;
+        for (int e = A.outer[i + 1] - 1; e >= A.outer[i] && A.inner[e] > i; --e)
+          if (A.inner[e] < end) sum -= A.value[e] * x[A.inner[e]];
+        r[i] = sum;
+      }
+    });
     if (!level.thin.empty()) {  // the thin block: x_T += A_TT^-1 r_T, r updated
       for (std::size_t t = 0; t < level.thin.size(); ++t) level.thin_r[t] = r[level.thin[t]];
       solve_thin(level, A, x, r);
@@ -341,6 +443,7 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     // The coarse correction: b_c = R r, x += P x_c.
     Level& coarse = levels_[l + 1];
     const Csr R = level.R.view(), P = level.P.view();
+#pragma omp parallel for schedule(static) if (n > kParallelRows)
     for (int c = 0; c < coarse.n; ++c) {
       double sum = 0.0;
       for (int e = R.outer[c]; e < R.outer[c + 1]; ++e) sum += R.value[e] * r[R.inner[e]];
@@ -348,6 +451,7 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
     }
     cycle(l + 1);
     const double* const xc = coarse.x.data();
+#pragma omp parallel for schedule(static) if (n > kParallelRows)
     for (int i = 0; i < n; ++i)
       for (int e = P.outer[i]; e < P.outer[i + 1]; ++e) x[i] += P.value[e] * xc[P.inner[e]];
     if (!level.thin.empty()) {  // the thin block again (the adjoint order): x_T += A_TT^-1 (b - A x)_T
@@ -359,16 +463,23 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
       }
       solve_thin(level, A, x, nullptr);
     }
-    // Backward Gauss-Seidel.
-    for (int i = n - 1; i >= 0; --i) {
-      double sum = b[i];
-      for (int e = A.outer[i]; e < A.outer[i + 1]; ++e)
-        if (A.inner[e] != i) sum -= A.value[e] * x[A.inner[e]];
-      x[i] = sum * inverse_diagonal[i];
-    }
+    // Backward Gauss-Seidel: the forward sweep's order reversed (the odd strips, then the
+    // even ones, each from its last unknown).
+    for (int colour = 1; colour >= 0; --colour)
+      for_strips(level, colour, [&](int s, int end) {
+        for (int i = end - 1; i >= s; --i) {
+          double sum = b[i];
+          for (int e = A.outer[i]; e < A.outer[i + 1]; ++e)
+            if (A.inner[e] != i) sum -= A.value[e] * x[A.inner[e]];
+          x[i] = sum * inverse_diagonal[i];
+        }
+      });
   }
 
+  static constexpr int kParallelRows = 4096;  // a level's loops run side by side above this many unknowns
+  static constexpr int kStrips = 64;          // about this many strips across the grid
   int coarsest_size_ = 400;
+  int reach_ = 3;
   int thin_rows_ = 0;
   std::vector<int> thin_position_, thin_outer_, thin_inner_;
   std::vector<double> thin_value_;
@@ -377,9 +488,15 @@ class MultigridPreconditioner : public Eigen::SparseSolverBase<MultigridPrecondi
   Csr fine_;
   mutable std::vector<Level> levels_;
   int depth_ = 0;
-  std::vector<double> accumulator_;
-  std::vector<char> touched_;
-  std::vector<int> columns_, next_;
+  // multiply's rows in chunks: each its accumulator (zero between rows) and its output.
+  struct Chunk {
+    std::vector<double> accumulator, value;
+    std::vector<char> touched;
+    std::vector<int> columns, inner, length;
+  };
+  static constexpr int kChunks = 16;
+  std::vector<Chunk> chunks_;
+  std::vector<int> chunk_start_, next_;
   Eigen::SparseMatrix<double> coarsest_matrix_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> coarsest_;
   Eigen::ComputationInfo info_ = Eigen::Success;

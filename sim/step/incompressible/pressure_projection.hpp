@@ -91,6 +91,7 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
     // of the 2P + 3 vertex lines a full row reaches, i.e. water at most about three vertices thick.
     constexpr int kReach = 2 * DivergenceOperator<P>::kSpan - 1;
     multigrid_cg_.preconditioner().set_thin_rows(3 * kReach);
+    multigrid_cg_.preconditioner().set_reach(DivergenceOperator<P>::kSpan - 1);
   }
 
   std::string describe() const override {

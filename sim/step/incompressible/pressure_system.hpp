@@ -131,9 +131,11 @@ class PressureSystem {
   }
 
   // A assembled (row-major, the unknowns' order): row k holds the (2P + 3)^2 vertices within
-  // reach of vertex K through a shared control point, summed per row in a fixed order.
+  // reach of vertex K through a shared control point, summed per row in a fixed order. A is
+  // symmetric: each row sums only its entries from K on (vertex order), the others are read
+  // from the rows that summed them, so A is symmetric to the bit and costs half the products.
   void assemble(Eigen::SparseMatrix<double, Eigen::RowMajor>& A) const {
-    constexpr int kSpan = DivergenceOperator<P>::kSpan, kReach = 2 * kSpan - 1;
+    constexpr int kSpan = DivergenceOperator<P>::kSpan, kReach = 2 * kSpan - 1, kCentre = kSpan - 1;
     const int n = size(), ny = grid_.ny();
     std::vector<double>& local = assembly_;
     local.assign(std::size_t(n) * kReach * kReach, 0.0);
@@ -142,24 +144,26 @@ class PressureSystem {
       const int K = unknowns_[k], a = K / ny, b = K % ny;
       double* const row = local.data() + std::size_t(k) * kReach * kReach;
       // A_KL = sum_I D_KI W_I D_LI over the control points I = (a - 1 + e, b - 1 + f) of K's
-      // row; L = (a + e - e2, b + f - f2) meets I at its own offset (e2, f2). Every vertex L on
-      // the grid is summed (the rows of vertices without water hold what their particles
-      // put there; compressing drops them), in the order of I, then (e2, f2).
+      // row; L = (a + e - e2, b + f - f2) meets I at its own offset (e2, f2), and lies from K
+      // on where e2 < e, or e2 = e and f2 <= f. Every such vertex L on the grid is summed (the
+      // rows of vertices without water hold what their particles put there; compressing drops
+      // them), in the order of I, then (e2, f2).
       const Vec2* const dk = D_->row(K);
       for (int e = 0; e < kSpan; ++e) {
         const int i = a - 1 + e;
         if (i < 0 || i >= node_nx_) continue;
-        const int e2_lo = std::max(0, a + e - grid_.cells_x), e2_hi = std::min(kSpan - 1, a + e);
+        const int e2_lo = std::max(0, a + e - grid_.cells_x), e2_hi = std::min(e, a + e);
         for (int f = 0; f < kSpan; ++f) {
           const int j = b - 1 + f;
           if (j < 0 || j >= node_ny_) continue;
           const int I = i * node_ny_ + j;
           const Vec2 dw = dk[e * kSpan + f].cwiseProduct(inverse_mass_[I]);
           if (dw.isZero(0.0)) continue;
-          const int f2_lo = std::max(0, b + f - grid_.cells_y), f2_hi = std::min(kSpan - 1, b + f);
+          const int f2_lo = std::max(0, b + f - grid_.cells_y), f2_all = std::min(kSpan - 1, b + f);
           for (int e2 = e2_lo; e2 <= e2_hi; ++e2) {
-            const int L0 = K + (e - e2) * ny + f;                                      // L at f2 = 0
-            double* const out = row + (e - e2 + kSpan - 1) * kReach + f + kSpan - 1;  // its entry
+            const int f2_hi = e2 == e ? std::min(f, f2_all) : f2_all;
+            const int L0 = K + (e - e2) * ny + f;                                  // L at f2 = 0
+            double* const out = row + (e - e2 + kCentre) * kReach + f + kCentre;  // its entry
             for (int f2 = f2_lo; f2 <= f2_hi; ++f2) out[-f2] += dw.dot(D_->row(L0 - f2)[e2 * kSpan + f2]);
           }
         }
@@ -171,41 +175,58 @@ class PressureSystem {
             const int C = K + c * step;
             if (C < 0 || C >= grid_.count() || position_[C] < 0 || !(stencil_[C] & bit)) continue;
             const double cK = c == 0 ? -2.0 : 1.0;
-            for (int l = -1; l <= 1; ++l) {
-              const int off = c + l;  // L = C + l step = K + (c + l) step
+            for (int l = std::max(-1, -c); l <= 1; ++l) {
+              const int off = c + l;  // L = C + l step = K + (c + l) step, from K on
               const int da = axis == 0 ? off : 0, db = axis == 0 ? 0 : off;
-              row[(da + kSpan - 1) * kReach + db + kSpan - 1] += stabilization_ * cK * (l == 0 ? -2.0 : 1.0);
+              row[(da + kCentre) * kReach + db + kCentre] += stabilization_ * cK * (l == 0 ? -2.0 : 1.0);
             }
           }
         }
     }
     // Written in place, compressed (rows come out sorted since the unknowns are numbered in
-    // vertex order), into storage reused from step to step.
-    A.resize(n, n);
-    A.data().resize(std::size_t(n) * kReach * kReach);  // a bound, trimmed below
-    int* const outer = A.outerIndexPtr();
-    int* const inner = A.innerIndexPtr();
-    double* const value = A.valuePtr();
-    int at = 0;
-    outer[0] = 0;
-    for (int k = 0; k < n; ++k) {
+    // vertex order), into storage reused from step to step: the rows' lengths, then the rows,
+    // side by side. An entry before K is row L's entry at the mirrored offset.
+    auto entry = [&](int k, int da, int db, int l) {
+      const bool before = da < kCentre || (da == kCentre && db < kCentre);
+      return before ? local[std::size_t(l) * kReach * kReach + (2 * kCentre - da) * kReach + 2 * kCentre - db]
+                    : local[std::size_t(k) * kReach * kReach + da * kReach + db];
+    };
+    auto for_each_entry = [&](int k, auto&& visit) {
       const int K = unknowns_[k], a = K / ny, b = K % ny;
-      const double* const row = local.data() + std::size_t(k) * kReach * kReach;
       for (int da = 0; da < kReach; ++da) {
-        const int la = a + da - kSpan + 1;
+        const int la = a + da - kCentre;
         if (la < 0 || la > grid_.cells_x) continue;
         for (int db = 0; db < kReach; ++db) {
-          const int lb = b + db - kSpan + 1;
+          const int lb = b + db - kCentre;
           if (lb < 0 || lb > grid_.cells_y) continue;
           const int l = position_[la * ny + lb];
-          if (l < 0 || row[da * kReach + db] == 0.0) continue;
-          inner[at] = l;
-          value[at++] = row[da * kReach + db];
+          if (l < 0) continue;
+          const double v = entry(k, da, db, l);
+          if (v != 0.0) visit(l, v);
         }
       }
-      outer[k + 1] = at;
+    };
+    A.resize(n, n);
+    int* const outer = A.outerIndexPtr();
+    outer[0] = 0;
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (int k = 0; k < n; ++k) {
+      int count = 0;
+      for_each_entry(k, [&](int, double) { ++count; });
+      outer[k + 1] = count;
     }
-    A.data().resize(at);
+    for (int k = 0; k < n; ++k) outer[k + 1] += outer[k];
+    A.data().resize(outer[n]);
+    int* const inner = A.innerIndexPtr();
+    double* const value = A.valuePtr();
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (int k = 0; k < n; ++k) {
+      int at = outer[k];
+      for_each_entry(k, [&](int l, double v) {
+        inner[at] = l;
+        value[at++] = v;
+      });
+    }
   }
 
  private:
