@@ -54,9 +54,9 @@ long move_particles_and_remap_momentum(StepState<P>& st, double dt, double flip,
     Vec2* const remap = layer.remap_velocity.data();  // read once (see particle_to_grid.hpp)
     long body_clamped = 0;
     st.schedules[b].for_each([&, remap, gx, gy, ny, dt, flip](std::uint32_t p) {
-      // Local copies of the weights and of what the scatter reads: a store to the particle or
-      // to the grid may alias the closure and the weights, and would reload them.
-      const ParticleWeights<P> w = st.weights[p];
+      // What the scatter reads, as locals: a store to the particle or to the grid may alias
+      // the closure, which would reload it (particle_to_grid.hpp).
+      const ParticleWeights<P>& w = st.weights[p];
       Vec2* const remap_at = remap;
       const double* const gx_at = gx;
       const double* const gy_at = gy;
