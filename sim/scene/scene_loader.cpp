@@ -247,6 +247,13 @@ SceneDescription load_scene_text(const std::string& text, const std::string& pat
     }
     s.solver.shifting = solver->number_or("particle_shifting", 0.0, Range::closed(0.0, 0.5));
     s.solver.subcell_shifting = solver->number_or("subcell_shifting", 0.0, Range::closed(0.0, 0.25));
+    if (solver->has("shifting_velocity")) {
+      if (s.solver.shifting <= 0.0 && s.solver.subcell_shifting <= 0.0)
+        solver->fail("shifting_velocity", "applies only with particle_shifting or subcell_shifting > 0");
+      if (!apic)  // a FLIP particle has no affine field: its shift always keeps its velocity
+        solver->fail("shifting_velocity", "applies only with velocity_update = \"apic\"");
+      s.solver.shift_follows_affine = solver->choice("shifting_velocity", {"kept", "affine"}) == "affine";
+    }
     const Vec2 range = solver->vec2_or("density_range", Vec2(s.solver.min_density_ratio, s.solver.max_density_ratio),
                                        Range::positive());
     if (!(range.x() < 1.0 && range.y() > 1.0)) solver->fail("density_range", "must be [low, high] with low < 1 < high");

@@ -47,7 +47,7 @@ BsmpmSimulation<P>::BsmpmSimulation(StepState<P> state, SolverSettings settings,
         if (!spacing) spacing = b.spacing;
       }
     shifting_.emplace(st_.grid, spacing.value_or(st_.grid.cell_size() / 2.0), settings_.shifting,
-                      settings_.subcell_shifting, fluid_layers);
+                      settings_.subcell_shifting, fluid_layers, settings_.shift_follows_affine);
   }
   for (auto& layer : st_.layers) layer.resize(st_.grid.node_count());
   st_.index_of_id.resize(st_.particles.size());

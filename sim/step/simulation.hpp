@@ -55,6 +55,10 @@ struct SolverSettings {
   // Sub-cell shifting (docs/method.md §10): the same drift down the volume fraction at the
   // particles' own spacing s, D_s = subcell_shifting s^2 per step; 0 = off.
   double subcell_shifting = 0.0;
+  // What a shifted APIC particle's velocity does (docs/method.md §10): kept (false: the shift
+  // moves mass with its momentum, so momentum is conserved exactly) or moved along its affine
+  // field, v_p += C_p dx (true: the velocity at the new position; momentum changes by m C dx).
+  bool shift_follows_affine = false;
   // rho / rho0 = 1 / J that a deformable particle may reach: beyond it the step stops the
   // run as numerically unstable (solver.density_range; docs/method.md §2).
   double min_density_ratio = 0.5, max_density_ratio = 2.0;

@@ -81,7 +81,8 @@ long move_particles_and_remap_momentum(StepState<P>& st, double dt, double flip,
         for (int k = 0; k < 2; ++k)
           if (x[k] + dx[k] < lo[k] || x[k] + dx[k] > hi[k]) dx[k] = 0.0;
         x += dx;
-        if constexpr (kAffine) v += C * dx;
+        if constexpr (kAffine)  // else the particle keeps its momentum (method.md §10)
+          if (shifting->follows_affine()) v += C * dx;
       }
       ps.v[p] = v;
       if (keep_inside(x, lo, hi)) {

@@ -25,11 +25,14 @@ class ParticleShifting {
   // control point is 1 inside but not next to a wall, where the clamped functions are
   // lopsided: phi is measured against it, so that the seeded state does not drift.
   // subcell_coefficient D_s > 0 adds the sub-cell drift on the grid fields `subcell_layers`.
+  // follows_affine: an APIC particle's velocity moves along its affine field (v_p += C_p dx)
+  // instead of staying (see follows_affine()).
   ParticleShifting(const Grid<P>& grid, const Vec2& spacing, double coefficient, double subcell_coefficient = 0.0,
-                   const std::vector<int>& subcell_layers = {})
+                   const std::vector<int>& subcell_layers = {}, bool follows_affine = false)
       : inverse_integral_x_(lattice_fraction_inverse(grid.bx, spacing.x())),
         inverse_integral_y_(lattice_fraction_inverse(grid.by, spacing.y())),
-        scale_(coefficient * grid.cell_size().minCoeff() * grid.cell_size().minCoeff()) {
+        scale_(coefficient * grid.cell_size().minCoeff() * grid.cell_size().minCoeff()),
+        follows_affine_(follows_affine) {
     if (subcell_coefficient <= 0.0) return;
     for (int layer : subcell_layers) {
       if (layer >= static_cast<int>(subcell_.size())) subcell_.resize(layer + 1);
@@ -90,6 +93,12 @@ class ParticleShifting {
     return dx;
   }
 
+  // Whether a shifted APIC particle takes its affine field's velocity at the new position,
+  // v_p += C_p dx (method.md §10, solver.shifting_velocity = "affine"); otherwise it keeps v_p,
+  // and the shift carries the particle's mass with its momentum: sum m_p v_p is unchanged,
+  // where the affine field's velocity changes it by sum m_p C_p dx_p.
+  bool follows_affine() const { return follows_affine_; }
+
   std::size_t bytes() const {
     std::size_t n = heap_bytes(inverse_integral_x_) + heap_bytes(inverse_integral_y_);
     for (const auto& s : subcell_)
@@ -116,6 +125,7 @@ class ParticleShifting {
   std::vector<std::optional<SubcellVolume<P>>> subcell_;         // per grid field; empty when off
   std::vector<NodeBox> written_;                                 // the cells each field's last scatter touched
   double subcell_scale_ = 0.0;                                   // D_s s^2
+  bool follows_affine_ = false;                                  // v_p += C_p dx on a shift
 };
 
 }  // namespace bsmpm
