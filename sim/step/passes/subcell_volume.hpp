@@ -91,9 +91,11 @@ class SubcellVolume {
     double frac;  // the weight of the upper one
   };
 
-  static Hat hat(const Axis& a, double x) {
+  // Inlined, and floor() as a truncation of u held at 0 or above (the same node: a u below
+  // 0 clamps to node 0 either way): out of line it cost a third of the drift's instructions.
+  [[gnu::always_inline]] static Hat hat(const Axis& a, double x) {
     const double u = (x - a.origin) * a.inv_spacing;
-    const int node = std::clamp(static_cast<int>(std::floor(u)), 0, a.nodes - 2);
+    const int node = std::min(static_cast<int>(std::max(u, 0.0)), a.nodes - 2);
     return {node, std::clamp(u - node, 0.0, 1.0)};
   }
 
