@@ -4,6 +4,7 @@ accuracy-cost studies against its reference, and its cost.
 
     scripts/accuracy_cost.py [--column DIR] [--hydrostatic DIR] [--martin-moyce DIR]
                              [--gate DIR] [--lobovsky DIR] [--extra PROBLEM RUN_DIR LABEL ...]
+                             (each problem's option repeatable: several studies of one problem)
                              [--png media/accuracy_cost.png] [--csv OUT.csv] [--markdown OUT.md]
 
 Each DIR is the output directory of `bsmpm study scenes/studies/accuracy_cost_PROBLEM.toml --dir DIR`
@@ -364,7 +365,8 @@ def draw_map(results, footer=""):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     for name in PROBLEMS:
-        ap.add_argument("--" + name.replace("_", "-"), dest=name, help="study output directory")
+        ap.add_argument("--" + name.replace("_", "-"), dest=name, action="append", default=[],
+                        help="study output directory (repeatable: e.g. the incompressible model's study too)")
     ap.add_argument("--extra", action="append", nargs=3, default=[], metavar=("PROBLEM", "RUN_DIR", "LABEL"),
                     help="a single run of PROBLEM (e.g. made with bsmpm run) as one more case")
     ap.add_argument("--from-csv", metavar="CSV",
@@ -381,7 +383,11 @@ def main():
         return
     results, failures = {}, {}
     for problem, (title, error_of, _) in PROBLEMS.items():
-        cases, failures[problem] = study_cases(problem, getattr(args, problem)) if getattr(args, problem) else ([], [])
+        cases, failures[problem] = [], []
+        for directory in getattr(args, problem):
+            done, failed = study_cases(problem, directory)
+            cases += done
+            failures[problem] += failed
         for p, run, label in args.extra:
             if p == problem:
                 cases.append({"label": label, "run": run, "row": {}})
