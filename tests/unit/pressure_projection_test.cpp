@@ -7,6 +7,7 @@
 #include <random>
 
 #include "step/bsmpm_simulation.hpp"
+#include "step/incompressible/excess_volume_filter.hpp"
 #include "step/incompressible/fill_volume.hpp"
 #include "step/incompressible/pressure_projection.hpp"
 #include "unit/one_body_state.hpp"
@@ -272,4 +273,54 @@ TEST_CASE("J from the hats' fill is 1 on the seeding's lattice and the packing's
   CHECK(n > 50);
   CHECK(std::abs(inside - 0.8) <= 0.02 * 0.8);
   CHECK(highest <= 1.0);
+}
+
+// eq. I3f (method.md §12): one pass of the excess volume's filter is [1 2 1] / 4 per axis
+// between full hats, keeps the total, removes the vertex-to-vertex alternation and leaves
+// the vertices whose hats are less than half full alone.
+TEST_CASE("The excess volume's filter keeps the total, removes the alternation and spares part-filled hats",
+          "[pressure]") {
+  Grid<2> grid(Vec2(0.0, 0.0), Vec2(0.1, 0.1), 10, 8);
+  const PressureGrid hats(grid);
+  const int nx = hats.nx(), ny = hats.ny();
+  const NodeBox box{0, nx, 0, ny};
+  ExcessVolumeFilter filter;
+  filter.resize(hats);
+  // Full hats everywhere but the top row of vertices (a free surface: a quarter full).
+  auto volume0 = [&](int K) {
+    const int a = K / ny, b = K % ny;
+    return (b == ny - 1 ? 0.25 : 1.0) * hats.hat_integral(a, b);
+  };
+  auto total = [&](auto&& e) {
+    double sum = 0.0;
+    for (int K = 0; K < hats.count(); ++K) sum += e(K);
+    return sum;
+  };
+
+  SECTION("a spike spreads as [1 2 1] / 4 along each axis") {
+    const int K0 = 4 * ny + 3;
+    filter.apply(box, 1, volume0, [&](int K) { return K == K0 ? 16.0 : 0.0; });
+    CHECK(filter.excess(K0) == Approx(4.0));
+    CHECK(filter.excess(K0 + 1) == Approx(2.0));
+    CHECK(filter.excess(K0 - ny) == Approx(2.0));
+    CHECK(filter.excess(K0 + ny + 1) == Approx(1.0));
+    CHECK(filter.excess(K0 + 2) == 0.0);
+    CHECK(total([&](int K) { return filter.excess(K); }) == Approx(16.0).epsilon(1e-14));
+  }
+  SECTION("the alternation between full hats is removed, the part-filled row untouched") {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> noise(-0.1, 0.1);
+    std::vector<double> e(hats.count());
+    for (int a = 0; a < nx; ++a)
+      for (int b = 0; b < ny; ++b) e[a * ny + b] = ((a + b) % 2 ? 1.0 : -1.0) + noise(rng);
+    filter.apply(box, 2, volume0, [&](int K) { return e[K]; });
+    CHECK(total([&](int K) { return filter.excess(K); }) == Approx(total([&](int K) { return e[K]; })).margin(1e-12));
+    for (int a = 0; a < nx; ++a) {
+      CHECK(filter.excess(a * ny + ny - 1) == e[a * ny + ny - 1]);  // less than half full: not exchanged
+      // Interior vertices away from the walls and the surface: the +-1 alternation is gone,
+      // the noise (at most 0.1) averaged.
+      if (a >= 2 && a < nx - 2)
+        for (int b = 2; b < ny - 3; ++b) CHECK(std::abs(filter.excess(a * ny + b)) < 0.1);
+    }
+  }
 }

@@ -22,6 +22,7 @@ struct PressureParameters {
   double tolerance = 1e-6;         // relative residual |b - A p| / |b| of the solve
   int max_iterations = 500;        // beyond: the run stops as unstable
   double volume_correction = 0.5;  // beta: share of the water's excess volume removed per step (eq. I3)
+  int volume_correction_filter = 0;  // passes of the [1 2 1] / 4 filter of that excess (eq. I3f; 0: none)
   double stabilization = 0.05;     // alpha of the checkerboard term S (eq. I4)
   double surface_fraction = 0.1;   // a vertex whose hat is filled to less than this carries p = 0
   VolumeMeasure volume_measure = VolumeMeasure::kIncrement;
@@ -63,6 +64,8 @@ struct PressureParameters {
         p.tolerance = t->number_or("tolerance", p.tolerance, Range{Bound::exclusive(0.0), Bound::inclusive(0.1)});
         p.max_iterations = static_cast<int>(t->integer_or("max_iterations", p.max_iterations, 1, 100000));
         p.volume_correction = t->number_or("volume_correction", p.volume_correction, Range::closed(0.0, 1.0));
+        p.volume_correction_filter =
+            static_cast<int>(t->integer_or("volume_correction_filter", p.volume_correction_filter, 0, 16));
         p.stabilization = t->number_or("stabilization", p.stabilization, Range::closed(0.0, 10.0));
         if (t->choice_or("volume_measure", "increment", {"increment", "fill"}) == "fill")
           p.volume_measure = VolumeMeasure::kFill;

@@ -24,6 +24,7 @@
 #include "core/format.hpp"
 #include "step/effect.hpp"
 #include "step/incompressible/divergence_operator.hpp"
+#include "step/incompressible/excess_volume_filter.hpp"
 #include "step/incompressible/fill_volume.hpp"
 #include "step/incompressible/jacobi_preconditioner.hpp"
 #include "step/incompressible/multigrid_preconditioner.hpp"
@@ -61,6 +62,7 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
     const int nx = grid.nx(), ny = grid.ny();
     D_.resize(grid_, nx, ny);
     if (p.volume_measure == PressureParameters::VolumeMeasure::kFill) fill_.resize(grid_);
+    if (p.volume_correction_filter > 0) filter_.resize(grid_);
     system_.resize(grid_, nx, ny);
     pressure_.assign(grid_.count(), 0.0);
     last_.assign(fields_.size(), std::vector<double>(grid_.count(), std::nan("")));
@@ -96,14 +98,15 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
 
   std::string describe() const override {
     return format("pressure projection (incompressible, method.md §12): pressure on the cell corners, CG to %g "
-                  "(at most %d iterations, preconditioned by %s), volume correction %g (J %s), stabilization %g, "
+                  "(at most %d iterations, preconditioned by %s), volume correction %g (J %s, %d filter passes), "
+                  "stabilization %g, "
                   "p = 0 below fill %g",
                   parameters_.tolerance, parameters_.max_iterations,
                   parameters_.preconditioner == PressurePreconditioner::kMultigrid ? "multigrid" : "incomplete Cholesky",
                   parameters_.volume_correction,
                   parameters_.volume_measure == PressureParameters::VolumeMeasure::kFill ? "from the hats' fill"
                                                                                           : "carried",
-                  parameters_.stabilization, parameters_.surface_fraction);
+                  parameters_.volume_correction_filter, parameters_.stabilization, parameters_.surface_fraction);
   }
 
   void project_velocity(StepState<P>& st) override {
@@ -161,11 +164,17 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
     for (int k = 0; k < n; ++k) pressure_[unknowns[k]] = guess[k];
     hold_slip_walls(st, layer, nodes);
     system_.set_weights(layer, fixed_, st.mass_cutoff);
+    // eq. I3f: the excess volume filtered between full hats (none without the option).
+    const bool filtered = parameters_.volume_correction_filter > 0;
+    if (filtered)
+      filter_.apply(vertices, parameters_.volume_correction_filter, [&](int K) { return D_.moments(K).volume0; },
+                    [&](int K) { return D_.moments(K).excess; });
     // eq. I4's right-hand side.
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (int k = 0; k < n; ++k) {
       const int K = unknowns[k];
-      rhs[k] = -(D_.row_times(K, layer.velocity) + parameters_.volume_correction * D_.moments(K).excess / dt) / dt;
+      const double excess = filtered ? filter_.excess(K) : D_.moments(K).excess;
+      rhs[k] = -(D_.row_times(K, layer.velocity) + parameters_.volume_correction * excess / dt) / dt;
     }
     PressureSolve solve;
     solve.unknowns = n;
@@ -303,6 +312,7 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
   PressureGrid grid_;
   DivergenceOperator<P> D_;
   FillVolume<P> fill_;                    // only with volume_measure = "fill"
+  ExcessVolumeFilter filter_;             // only with volume_correction_filter > 0
   PressureSystem<P> system_;
   std::vector<std::vector<double>> last_;  // per field: the last solve's p_K, NaN off its unknowns
   std::vector<double> pressure_;         // p_K on every vertex (0 off the unknowns)
