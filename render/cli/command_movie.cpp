@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "cli/arguments.hpp"
 #include "cli/commands.hpp"
@@ -12,7 +13,7 @@
 #include "compose/figure_renderer.hpp"
 #include "compose/run_figures.hpp"
 #include "io/run_reader.hpp"
-#include "movie/movie_encoder.hpp"
+#include "movie/movie_writer.hpp"
 
 namespace bsmpm::cli {
 
@@ -102,7 +103,7 @@ int command_movie(const std::vector<std::string>& argv) {
                  settings.width, settings.height);
   for (const auto& note : figures.range_notes()) std::printf("range    %s\n", note.c_str());
 
-  render::MovieEncoder encoder(out, settings);
+  const std::unique_ptr<render::MovieWriter> encoder = render::open_movie(out, settings);
   Progress progress("movie", static_cast<long>(schedule.size()), quiet);
   int rendered_frame = -1;
   render::Image image;
@@ -124,10 +125,10 @@ int command_movie(const std::vector<std::string>& argv) {
       rendered_frame = schedule[k];
       ++renders;
     }
-    encoder.add_frame(image);
+    encoder->add_frame(image);
     progress.update(static_cast<long>(k + 1), figures.time_label(run.frames()[schedule[k]]));
   }
-  encoder.finish();
+  encoder->finish();
   progress.finish();
   std::printf("wrote    %s (%dx%d, %zu frames at %d fps = %.2f s, %ld run frames, slow motion x%g)\n", out.c_str(),
               settings.width, settings.height, schedule.size(), fps, schedule.size() / double(fps), renders, slowmo);

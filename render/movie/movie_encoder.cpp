@@ -158,3 +158,9 @@ void MovieEncoder::finish() {
 }
 
 }  // namespace bsmpm::render
+
+// The module's entry point (movie_writer.hpp): the one symbol bsmpm_movie.so exports.
+extern "C" __attribute__((visibility("default"))) bsmpm::render::MovieWriter* bsmpm_open_movie(
+    const std::string& path, const bsmpm::render::MovieSettings& settings) {
+  return new bsmpm::render::MovieEncoder(path, settings);
+}

@@ -3,35 +3,29 @@
 // rate, the index at the front of the file (faststart), so that the file plays in
 // presentation software, browsers and phones. Written under a temporary name and renamed
 // into place by finish(); destroying an unfinished encoder removes the temporary file.
+// Built into the module bsmpm_movie.so only (movie_writer.hpp).
 #pragma once
 
 #include <memory>
 #include <string>
 
-#include "image/image.hpp"
+#include "movie/movie_writer.hpp"
 
 namespace bsmpm::render {
 
-struct MovieSettings {
-  int width = 1280, height = 720;  // must be even (4:2:0 chroma)
-  int fps = 30;
-  int crf = 18;                    // x264 constant quality: 18 is visually lossless
-  std::string preset = "medium";   // x264 speed/size trade-off
-};
-
-class MovieEncoder {
+class MovieEncoder final : public MovieWriter {
  public:
   // Opens the encoder and the (temporary) output file; throws UsageError for bad settings,
   // IoError when the file cannot be created or libx264 is missing.
   MovieEncoder(const std::string& path, const MovieSettings& settings);
-  ~MovieEncoder();
+  ~MovieEncoder() override;
   MovieEncoder(const MovieEncoder&) = delete;
   MovieEncoder& operator=(const MovieEncoder&) = delete;
 
   // Appends one frame (the size given in the settings), shown for 1/fps s.
-  void add_frame(const Image& frame);
+  void add_frame(const Image& frame) override;
   // Flushes the encoder, writes the index and moves the file into place.
-  void finish();
+  void finish() override;
 
  private:
   struct Av;  // the FFmpeg objects
