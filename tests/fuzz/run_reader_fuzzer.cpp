@@ -87,7 +87,7 @@ void edit(hid_t file, Input& in) {
   if (op <= 4) {  // an attribute: removed, or replaced by a double, a long, a string, a list
     const std::vector<std::string> names = attributes(obj);
     std::string name = names.empty() ? in.text(8) : names[in.byte() % names.size()];
-    if (name.empty()) name = "a";
+    if (name.empty()) name.push_back('a');  // not `= "a"`: GCC 12's false -Wrestrict (its bug 105329)
     if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
     switch (op) {
       case 1: break;
@@ -111,7 +111,7 @@ void edit(hid_t file, Input& in) {
   bsmpm::h5::Handle group;
   if (H5Iget_type(obj) == H5I_DATASET || path == "/") {
     name = path;
-    if (path == "/") name = "/" + in.text(8);
+    if (path == "/") name = std::string(1, '/').append(in.text(8));  // not "/" + ...: GCC 12's false -Wrestrict (its bug 105329)
     if (path != "/") bsmpm::h5::remove_link(file, path);
   } else {
     group = bsmpm::h5::open_group(file, path);
