@@ -31,12 +31,11 @@ struct Particles {
   // permute() walk, so that a new array cannot be left out of either.
   template <class Visit>
   void for_each_array(Visit&& visit) {
-    visit(x), visit(x0), visit(v), visit(mass), visit(volume0), visit(J), visit(F), visit(stress), visit(pressure),
-        visit(C), visit(id), visit(body);
+    visit_arrays(*this, visit);
   }
   template <class Visit>
   void for_each_array(Visit&& visit) const {
-    const_cast<Particles&>(*this).for_each_array([&](const auto& a) { visit(a); });
+    visit_arrays(*this, visit);
   }
 
   void push_back(const Vec2& position, double m, double volume, BodyId b) {
@@ -76,6 +75,14 @@ struct Particles {
   // Reorders the range [begin, begin + order.size()) so that new slot k holds old
   // particle begin + order[k].
   void permute(std::size_t begin, const std::vector<std::uint32_t>& order, PermuteScratch& scratch);
+
+ private:
+  // The list behind both for_each_array(): `self` is a Particles or a const Particles.
+  template <class Self, class Visit>
+  static void visit_arrays(Self& self, Visit& visit) {
+    visit(self.x), visit(self.x0), visit(self.v), visit(self.mass), visit(self.volume0), visit(self.J),
+        visit(self.F), visit(self.stress), visit(self.pressure), visit(self.C), visit(self.id), visit(self.body);
+  }
 };
 
 }  // namespace bsmpm
