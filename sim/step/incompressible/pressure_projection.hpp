@@ -99,8 +99,7 @@ class PressureProjection final : public EffectBase<PressureProjection<P>, P> {
   std::string describe() const override {
     return format("pressure projection (incompressible, method.md §12): pressure on the cell corners, CG to %g "
                   "(at most %d iterations, preconditioned by %s), volume correction %g (J %s, %d filter passes), "
-                  "stabilization %g, "
-                  "p = 0 below fill %g",
+                  "stabilization %g, p = 0 below fill %g",
                   parameters_.tolerance, parameters_.max_iterations,
                   parameters_.preconditioner == PressurePreconditioner::kMultigrid ? "multigrid" : "incomplete Cholesky",
                   parameters_.volume_correction,
