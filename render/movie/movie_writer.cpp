@@ -11,6 +11,12 @@ namespace bsmpm::render {
 
 namespace {
 
+// What dlopen() or dlsym() last reported (dlerror() may return null).
+std::string last_dl_error() {
+  const char* message = dlerror();
+  return message ? message : "no reason given";
+}
+
 // The module beside the running program (build/render/ holds both), loaded once and kept:
 // the encoders it makes run its code until they are destroyed.
 OpenMovieFunction* movie_module_entry() {
@@ -25,11 +31,11 @@ OpenMovieFunction* movie_module_entry() {
                                    .string();
     void* handle = dlopen(module.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle == nullptr) {
-      failure = "cannot load the movie encoder " + module + ": " + dlerror();
+      failure = "cannot load the movie encoder " + module + ": " + last_dl_error();
       return;
     }
     entry = reinterpret_cast<OpenMovieFunction*>(dlsym(handle, kOpenMovieSymbol));
-    if (entry == nullptr) failure = module + " has no " + kOpenMovieSymbol + ": " + dlerror();
+    if (entry == nullptr) failure = module + " has no " + kOpenMovieSymbol + ": " + last_dl_error();
   });
   if (entry == nullptr) throw IoError(failure);
   return entry;
